@@ -1,0 +1,12 @@
+// The subcommands of the mixmesh program. Each file NAME_command.cpp adds one
+// subcommand to the application; errors leave as mixmesh::Error and main() turns
+// them into one line on stderr and a non-zero exit.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+namespace mixmesh::cli {
+
+// add_NAME_command declarations go here, one per subcommand.
+
+}  // namespace mixmesh::cli

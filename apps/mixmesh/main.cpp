@@ -1,0 +1,27 @@
+#include <exception>
+#include <iostream>
+
+#include "commands.hpp"
+#include "mixmesh/core/error.hpp"
+
+int main(int argument_count, char** arguments) {
+  CLI::App application{
+      "mixmesh: mixed hexahedral/prismatic/pyramidal/tetrahedral meshes for aircraft CFD.\n"
+      "Run 'mixmesh COMMAND --help' for the options of one command."};
+  application.require_subcommand(1);
+  application.set_version_flag("--version", "mixmesh 0.1.0");
+  // One line per subcommand (commands.hpp).
+
+  try {
+    application.parse(argument_count, arguments);
+  } catch (const CLI::ParseError& error) {
+    return application.exit(error);
+  } catch (const mixmesh::Error& error) {
+    std::cerr << "mixmesh: error: " << error.what() << '\n';
+    return 1;
+  } catch (const std::exception& error) {
+    std::cerr << "mixmesh: internal error: " << error.what() << '\n';
+    return 3;
+  }
+  return 0;
+}

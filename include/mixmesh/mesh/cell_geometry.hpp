@@ -1,0 +1,42 @@
+// Signed volume and validity of single cells.
+//
+// A cell's volume is the sum over its faces of the tetrahedra (face triangle or
+// quad-centre fan, cell centre); a cell is valid when that volume, every one of those
+// tetrahedra and every corner Jacobian is positive. A total alone is not enough: a
+// tangled hex can have a positive volume with a folded corner.
+#pragma once
+
+#include "mixmesh/mesh/mixed_mesh.hpp"
+
+namespace mixmesh {
+
+struct CellShape {
+  double volume = 0.0;
+  // Smallest corner determinant divided by the product of its edge lengths
+  // (the unnormalised scaled Jacobian); 1 for a right-angled corner.
+  double min_corner_jacobian = 0.0;
+  int negative_subtetrahedra = 0;
+  int negative_corners = 0;
+
+  bool valid() const {
+    return volume > 0.0 && negative_subtetrahedra == 0 && negative_corners == 0;
+  }
+};
+
+// nodes: node_count(type) indices into points.
+CellShape cell_shape(CellType type, const std::vector<Vector3>& points, const Index* nodes);
+
+double signed_volume(CellType type, const std::vector<Vector3>& points, const Index* nodes);
+
+// Six times the signed volume of tetrahedron (a, b, c, d).
+inline double tetrahedron_volume6(const Vector3& a, const Vector3& b, const Vector3& c,
+                                  const Vector3& d) {
+  return (b - a).cross(c - a).dot(d - a);
+}
+
+// Area-weighted normal of a face (Newell's method): length = area for a planar face.
+Vector3 face_area_vector(const std::vector<Vector3>& points, const Index* nodes, int node_count);
+
+Vector3 cell_centre(CellType type, const std::vector<Vector3>& points, const Index* nodes);
+
+}  // namespace mixmesh

@@ -1,0 +1,42 @@
+// Face matching: which cell faces are interior (two cells, opposite orientation),
+// which lie on the boundary, and what is non-conforming.
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "mixmesh/mesh/mixed_mesh.hpp"
+
+namespace mixmesh {
+
+// One face of one cell.
+struct CellFace {
+  CellType type;
+  Index cell;
+  int local_face;
+};
+
+struct FaceConnectivity {
+  std::vector<std::array<CellFace, 2>> interior;
+  std::vector<CellFace> boundary;             // on exactly one cell
+  std::vector<CellFace> shared_by_many;       // faces on three or more cells
+  std::vector<std::array<CellFace, 2>> same_orientation;  // two cells, same winding
+  // Boundary cell faces with no tagged boundary face of the same nodes.
+  std::vector<CellFace> untagged_boundary;
+  // Tagged boundary faces (type, index) that match no boundary cell face.
+  std::vector<std::pair<FaceType, std::size_t>> stray_boundary_faces;
+  // Boundary triangles whose three nodes belong to one boundary quad: a triangle
+  // meets a quad without a pyramid between them.
+  std::size_t triangles_in_quads = 0;
+
+  bool conforming() const {
+    return shared_by_many.empty() && same_orientation.empty() && triangles_in_quads == 0;
+  }
+};
+
+FaceConnectivity match_faces(const MixedMesh& mesh);
+
+// The nodes of a cell face, in outward order; returns the node count (3 or 4).
+int face_nodes(const MixedMesh& mesh, const CellFace& face, Index* nodes);
+
+}  // namespace mixmesh

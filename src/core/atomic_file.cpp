@@ -1,0 +1,29 @@
+#include "mixmesh/core/atomic_file.hpp"
+
+#include <random>
+#include <string>
+
+#include "mixmesh/core/error.hpp"
+
+namespace mixmesh {
+
+namespace fs = std::filesystem;
+
+void write_atomically(const fs::path& path, const std::function<void(const fs::path&)>& write) {
+  std::random_device entropy;
+  const fs::path temporary =
+      path.parent_path() / (".tmp-" + std::to_string(entropy() % 1000000000u) + "-" +
+                            path.filename().string());
+  try {
+    write(temporary);
+    std::error_code code;
+    fs::rename(temporary, path, code);
+    if (code) throw Error(path.string() + ": cannot write: " + code.message());
+  } catch (...) {
+    std::error_code ignored;
+    fs::remove(temporary, ignored);
+    throw;
+  }
+}
+
+}  // namespace mixmesh

@@ -1,0 +1,72 @@
+#include "mixmesh/mesh/cell_geometry.hpp"
+
+#include <array>
+
+namespace mixmesh {
+
+Vector3 cell_centre(CellType type, const std::vector<Vector3>& points, const Index* nodes) {
+  const int count = node_count(type);
+  Vector3 sum = Vector3::Zero();
+  for (int local = 0; local < count; ++local) sum += points[static_cast<std::size_t>(nodes[local])];
+  return sum / count;
+}
+
+Vector3 face_area_vector(const std::vector<Vector3>& points, const Index* nodes, int count) {
+  Vector3 normal = Vector3::Zero();
+  for (int corner = 0; corner < count; ++corner) {
+    const Vector3& from = points[static_cast<std::size_t>(nodes[corner])];
+    const Vector3& to = points[static_cast<std::size_t>(nodes[(corner + 1) % count])];
+    normal += from.cross(to);
+  }
+  return 0.5 * normal;
+}
+
+CellShape cell_shape(CellType type, const std::vector<Vector3>& points, const Index* nodes) {
+  const CellDescriptor& cell = descriptor(type);
+  auto at = [&](int local) -> const Vector3& { return points[static_cast<std::size_t>(nodes[local])]; };
+  const Vector3 centre = cell_centre(type, points, nodes);
+
+  CellShape shape;
+  double volume6 = 0.0;
+  for (int face = 0; face < cell.face_count; ++face) {
+    const LocalFace& local = cell.faces[face];
+    // Outward faces: the tetrahedron (a, b, c, centre) is positive when the face is
+    // seen counter-clockwise from outside, so the sign is flipped.
+    if (local.node_count == 3) {
+      const double part = -tetrahedron_volume6(at(local.nodes[0]), at(local.nodes[1]),
+                                               at(local.nodes[2]), centre);
+      volume6 += part;
+      shape.negative_subtetrahedra += part <= 0.0;
+      continue;
+    }
+    const Vector3 face_centre =
+        0.25 * (at(local.nodes[0]) + at(local.nodes[1]) + at(local.nodes[2]) + at(local.nodes[3]));
+    for (int corner = 0; corner < 4; ++corner) {
+      const double part = -tetrahedron_volume6(at(local.nodes[corner]),
+                                               at(local.nodes[(corner + 1) % 4]), face_centre, centre);
+      volume6 += part;
+      shape.negative_subtetrahedra += part <= 0.0;
+    }
+  }
+  shape.volume = volume6 / 6.0;
+
+  shape.min_corner_jacobian = 1e300;
+  for (int corner = 0; corner < cell.corner_count; ++corner) {
+    const Corner& local = cell.corners[corner];
+    const Vector3 first = at(local.neighbours[0]) - at(local.node);
+    const Vector3 second = at(local.neighbours[1]) - at(local.node);
+    const Vector3 third = at(local.neighbours[2]) - at(local.node);
+    const double lengths = first.norm() * second.norm() * third.norm();
+    const double determinant = first.cross(second).dot(third);
+    const double scaled = lengths > 0.0 ? determinant / lengths : -1.0;
+    shape.negative_corners += scaled <= 0.0;
+    if (scaled < shape.min_corner_jacobian) shape.min_corner_jacobian = scaled;
+  }
+  return shape;
+}
+
+double signed_volume(CellType type, const std::vector<Vector3>& points, const Index* nodes) {
+  return cell_shape(type, points, nodes).volume;
+}
+
+}  // namespace mixmesh
