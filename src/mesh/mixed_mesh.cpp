@@ -41,6 +41,8 @@ std::vector<Index> compact_points(MixedMesh& mesh) {
   };
   for (const CellBlock& cells : mesh.cells) mark(cells.nodes);
   for (const FaceBlock& faces : mesh.boundary) mark(faces.nodes);
+  for (const FaceBlock& faces : mesh.planar_cells) mark(faces.nodes);
+  mark(mesh.boundary_edges.nodes);
 
   Index next = 0;
   for (std::size_t point = 0; point < mesh.points.size(); ++point) {
@@ -55,6 +57,8 @@ std::vector<Index> compact_points(MixedMesh& mesh) {
   };
   for (CellBlock& cells : mesh.cells) apply(cells.nodes);
   for (FaceBlock& faces : mesh.boundary) apply(faces.nodes);
+  for (FaceBlock& faces : mesh.planar_cells) apply(faces.nodes);
+  apply(mesh.boundary_edges.nodes);
   return renumber;
 }
 

@@ -5,6 +5,10 @@
 //                   with a parallel array of region tags
 //   boundary[type]  boundary faces (3 triangle, 4 quad), each with a marker id
 //   marker_names    name of every marker id
+//
+// Planar meshes (2D CFD, the deformation studies) use the same type: triangles and
+// quads in the z = 0 plane as planar_cells (markers = region tags) and boundary
+// edges with markers; their volume cells and boundary faces are empty.
 #pragma once
 
 #include <Eigen/Core>
@@ -33,11 +37,20 @@ struct FaceBlock {
   std::vector<int> markers;   // index into MixedMesh::marker_names
 };
 
+struct EdgeBlock {
+  std::vector<Index> nodes;   // 2 per edge
+  std::vector<int> markers;
+};
+
 struct MixedMesh {
   std::vector<Vector3> points;
   std::array<CellBlock, 4> cells;
   std::array<FaceBlock, 2> boundary;
   std::vector<std::string> marker_names;
+  std::array<FaceBlock, 2> planar_cells;  // planar meshes only
+  EdgeBlock boundary_edges;               // planar meshes only
+
+  bool planar() const { return cell_count() == 0 && !(planar_cells[0].nodes.empty() && planar_cells[1].nodes.empty()); }
 
   CellBlock& block(CellType type) { return cells[index(type)]; }
   const CellBlock& block(CellType type) const { return cells[index(type)]; }
