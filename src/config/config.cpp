@@ -12,13 +12,20 @@ namespace mixmesh::config {
 struct DocumentData {
   toml::table root;
   std::filesystem::path file;
+  bool discover_sweeps = false;
+  std::vector<Sweep> sweeps;
 };
 
 namespace {
 
+std::string qualified(const std::string& section, std::string_view key) {
+  return section.empty() ? std::string(key) : section + "." + std::string(key);
+}
+
 const toml::table& as_table(const void* table) { return *static_cast<const toml::table*>(table); }
 
 std::string position(const std::filesystem::path& file, const toml::source_region& source) {
+  if (source.begin.line == 0) return file.string() + " (value set on the command line)";
   return file.string() + ":" + std::to_string(source.begin.line) + ":" + std::to_string(source.begin.column);
 }
 
@@ -69,6 +76,26 @@ const void* Section::find(std::string_view key) {
   return node;
 }
 
+const void* Section::find_scalar(std::string_view key) {
+  const auto* node = static_cast<const toml::node*>(find(key));
+  if (node == nullptr || !node->is_array() || !document_->discover_sweeps) return node;
+  const toml::array& values = *node->as_array();
+  const bool scalars = !values.empty() && std::all_of(values.begin(), values.end(), [&](const toml::node& value) {
+    return value.is_number() ? values.front().is_number() : value.type() == values.front().type();
+  });
+  if (!scalars || values.front().is_array() || values.front().is_table()) return node;
+  Sweep sweep{qualified(path_, key), {}};
+  for (const toml::node& value : values) {
+    std::ostringstream text;
+    value.visit([&](const auto& scalar) { text << scalar; });
+    sweep.values.push_back(text.str());
+  }
+  const auto known = std::find_if(document_->sweeps.begin(), document_->sweeps.end(),
+                                  [&](const Sweep& other) { return other.key == sweep.key; });
+  if (known == document_->sweeps.end()) document_->sweeps.push_back(std::move(sweep));
+  return &values.front();
+}
+
 std::string Section::where(std::string_view key) const {
   const toml::node* node = key.empty() ? nullptr : as_table(table_).get(key);
   return position(document_->file, node != nullptr ? node->source() : as_table(table_).source());
@@ -79,10 +106,6 @@ void Section::fail(std::string_view key, const std::string& message) const {
 }
 
 namespace {
-
-std::string qualified(const std::string& section, std::string_view key) {
-  return section.empty() ? std::string(key) : section + "." + std::string(key);
-}
 
 double number_value(const Section& section, std::string_view key, const toml::node& node,
                     const Bounds& bounds) {
@@ -100,12 +123,12 @@ double number_value(const Section& section, std::string_view key, const toml::no
 }  // namespace
 
 void Section::read(std::string_view key, double& value, const Bounds& bounds) {
-  if (const auto* node = static_cast<const toml::node*>(find(key)))
+  if (const auto* node = static_cast<const toml::node*>(find_scalar(key)))
     value = number_value(*this, key, *node, bounds);
 }
 
 void Section::read(std::string_view key, int& value, const Bounds& bounds) {
-  const auto* node = static_cast<const toml::node*>(find(key));
+  const auto* node = static_cast<const toml::node*>(find_scalar(key));
   if (node == nullptr) return;
   if (!node->is_integer())
     fail(key, "'" + qualified(path_, key) + "' must be an integer, not " + type_name(*node));
@@ -118,14 +141,14 @@ void Section::read(std::string_view key, int& value, const Bounds& bounds) {
 }
 
 void Section::read(std::string_view key, bool& value) {
-  const auto* node = static_cast<const toml::node*>(find(key));
+  const auto* node = static_cast<const toml::node*>(find_scalar(key));
   if (node == nullptr) return;
   if (!node->is_boolean()) fail(key, "'" + qualified(path_, key) + "' must be true or false, not " + type_name(*node));
   value = node->as_boolean()->get();
 }
 
 void Section::read(std::string_view key, std::string& value) {
-  const auto* node = static_cast<const toml::node*>(find(key));
+  const auto* node = static_cast<const toml::node*>(find_scalar(key));
   if (node == nullptr) return;
   if (!node->is_string()) fail(key, "'" + qualified(path_, key) + "' must be a string, not " + type_name(*node));
   value = node->as_string()->get();
@@ -248,6 +271,35 @@ Document Document::parse(std::string_view text, const std::filesystem::path& sou
   }
   return document;
 }
+
+void Document::set(std::string_view assignment) {
+  const std::size_t equals = assignment.find('=');
+  const std::string key(assignment.substr(0, equals));
+  if (equals == std::string_view::npos || key.empty())
+    throw Error("--set " + std::string(assignment) + ": expected KEY=VALUE, e.g. planform.taper=0.3");
+  toml::table parsed;
+  try {
+    parsed = toml::parse("value = " + std::string(assignment.substr(equals + 1)), "--set " + key);
+  } catch (const toml::parse_error& error) {
+    throw Error("--set " + std::string(assignment) + ": " + std::string(error.description()));
+  }
+  toml::table* table = &data_->root;
+  std::size_t start = 0;
+  for (std::size_t dot = key.find('.'); dot != std::string::npos; dot = key.find('.', start)) {
+    const std::string part = key.substr(start, dot - start);
+    toml::node* child = table->get(part);
+    if (child == nullptr) child = &table->insert_or_assign(part, toml::table{}).first->second;
+    if (!child->is_table())
+      throw Error("--set " + std::string(assignment) + ": '" + key.substr(0, dot) + "' is not a table");
+    table = child->as_table();
+    start = dot + 1;
+  }
+  const std::string leaf = key.substr(start);
+  parsed.get("value")->visit([&](const auto& value) { table->insert_or_assign(leaf, value); });
+}
+
+void Document::discover_sweeps() { data_->discover_sweeps = true; }
+const std::vector<Sweep>& Document::sweeps() const { return data_->sweeps; }
 
 Section Document::root() const { return Section(data_, &data_->root, ""); }
 const std::filesystem::path& Document::file() const { return data_->file; }

@@ -126,3 +126,42 @@ TEST(Config, MissingFileIsReported) {
   EXPECT_EQ(error_of([] { Document::load("/nonexistent/case.toml"); }),
             "/nonexistent/case.toml: cannot open config file");
 }
+
+TEST(Config, SetReplacesAndCreatesValues) {
+  Document document = Document::parse("[wing]\nroot_chord = 1\n", "/cases/w.toml");
+  document.set("wing.root_chord=0.5");
+  document.set("wing.twist=[1, 2]");
+  document.set("wing.distribution='tanh'");
+  const WingOptions options = read_wing(document);
+  EXPECT_DOUBLE_EQ(options.root_chord, 0.5);
+  EXPECT_EQ(options.twist, (std::vector<double>{1.0, 2.0}));
+  EXPECT_EQ(options.distribution, "tanh");
+  document.set("output.formats=['vtu']");
+  EXPECT_EQ(error_of([&] { read_wing(document); }),
+            "/cases/w.toml (value set on the command line): unknown key 'output'");
+  EXPECT_EQ(error_of([&] { document.set("wing.root_chord"); }),
+            "--set wing.root_chord: expected KEY=VALUE, e.g. planform.taper=0.3");
+  EXPECT_EQ(error_of([&] { document.set("wing.root_chord.x=1"); }),
+            "--set wing.root_chord.x=1: 'wing.root_chord' is not a table");
+}
+
+TEST(Config, SweepDiscoveryListsScalarOptionsGivenAsArrays) {
+  Document document = Document::parse(
+      "[wing]\nroot_chord = [1, 2.5]\nsections = [3, 4]\ntwist = [0, 1]\ndistribution = ['uniform', 'tanh']\n",
+      "w.toml");
+  EXPECT_NE(error_of([&] { read_wing(document); }), "");  // an array where a number belongs
+  document.discover_sweeps();
+  const WingOptions first = read_wing(document);
+  EXPECT_DOUBLE_EQ(first.root_chord, 1.0);
+  EXPECT_EQ(first.distribution, "uniform");
+  EXPECT_EQ(first.twist, (std::vector<double>{0.0, 1.0}));  // a list option stays a list
+  ASSERT_EQ(document.sweeps().size(), 3u);
+  EXPECT_EQ(document.sweeps()[0].key, "wing.root_chord");
+  EXPECT_EQ(document.sweeps()[0].values, (std::vector<std::string>{"1", "2.5"}));
+  EXPECT_EQ(document.sweeps()[2].values, (std::vector<std::string>{"'uniform'", "'tanh'"}));
+  for (const config::Sweep& sweep : document.sweeps()) document.set(sweep.key + "=" + sweep.values.back());
+  const WingOptions last = read_wing(document);
+  EXPECT_DOUBLE_EQ(last.root_chord, 2.5);
+  EXPECT_EQ(last.sections, 4);
+  EXPECT_EQ(last.distribution, "tanh");
+}

@@ -82,10 +82,17 @@ class Section {
 
  private:
   const void* find(std::string_view key);
+  const void* find_scalar(std::string_view key);  // records sweeps, see Document
   std::shared_ptr<DocumentData> document_;
   const void* table_;
   std::string path_;
   std::vector<std::string> used_;
+};
+
+// A batch sweep: a scalar option given as an array of values, one run per value.
+struct Sweep {
+  std::string key;                  // dotted, e.g. "planform.leading_edge_sweep"
+  std::vector<std::string> values;  // each in TOML syntax, ready for Document::set
 };
 
 class Document {
@@ -98,6 +105,15 @@ class Document {
   const std::filesystem::path& file() const;
   // Folder that relative paths in the file are resolved against.
   std::filesystem::path folder() const;
+
+  // Sets the value at a dotted key from "key=value" (value in TOML syntax, e.g.
+  // planform.taper=0.3 or output.formats=["vtu"]); missing tables are created.
+  void set(std::string_view assignment);
+
+  // From now on, a scalar read that meets an array records a Sweep and reads the
+  // array's first element, so one pass of the option readers lists the sweeps.
+  void discover_sweeps();
+  const std::vector<Sweep>& sweeps() const;
 
  private:
   std::shared_ptr<DocumentData> data_;
