@@ -17,15 +17,6 @@ struct FaceRecord {
   int tag_index;  // -1 for cell faces; index into the tagged-face list otherwise
 };
 
-std::array<Index, 4> sorted_key(const Index* nodes, int count) {
-  // Insertion sort of three or four entries (std::sort on a tiny array trips
-  // GCC 12's array-bounds analysis).
-  std::array<Index, 4> key{nodes[0], nodes[1], nodes[2], count == 4 ? nodes[3] : -1};
-  for (int next = 1; next < count; ++next)
-    for (int slot = next; slot > 0 && key[slot - 1] > key[slot]; --slot) std::swap(key[slot - 1], key[slot]);
-  return key;
-}
-
 // +1 or -1: the winding of `nodes` relative to its sorted order, defined as the
 // direction in which the smallest node is followed by the second smallest.
 int winding(const Index* nodes, int count) {
@@ -38,6 +29,15 @@ int winding(const Index* nodes, int count) {
 }
 
 }  // namespace
+
+std::array<Index, 4> sorted_face_key(const Index* nodes, int count) {
+  // Insertion sort of three or four entries (std::sort on a tiny array trips
+  // GCC 12's array-bounds analysis).
+  std::array<Index, 4> key{nodes[0], nodes[1], nodes[2], count == 4 ? nodes[3] : -1};
+  for (int next = 1; next < count; ++next)
+    for (int slot = next; slot > 0 && key[slot - 1] > key[slot]; --slot) std::swap(key[slot - 1], key[slot]);
+  return key;
+}
 
 int face_nodes(const MixedMesh& mesh, const CellFace& face, Index* nodes) {
   const LocalFace& local = descriptor(face.type).faces[face.local_face];
@@ -80,7 +80,7 @@ FaceConnectivity match_faces(const MixedMesh& mesh) {
         const LocalFace& local = cell.faces[face];
         Index corners[4] = {-1, -1, -1, -1};
         for (int corner = 0; corner < local.node_count; ++corner) corners[corner] = nodes[local.nodes[corner]];
-        FaceRecord record{sorted_key(corners, local.node_count),
+        FaceRecord record{sorted_face_key(corners, local.node_count),
                           CellFace{type, static_cast<Index>(index_in_block), face}, -1};
         records[fill[static_cast<std::size_t>(record.key[0])]++] = record;
       }
@@ -128,7 +128,7 @@ FaceConnectivity match_faces(const MixedMesh& mesh) {
   for (FaceType type : all_face_types) {
     const int count = node_count(type);
     for (std::size_t face = 0; face < mesh.face_count(type); ++face) {
-      const auto key = sorted_key(mesh.face(type, face), count);
+      const auto key = sorted_face_key(mesh.face(type, face), count);
       tagged_by_node[static_cast<std::size_t>(key[0])].push_back(tagged_keys.size());
       tagged_keys.push_back(key);
       tagged_ids.emplace_back(type, face);

@@ -36,6 +36,10 @@ struct FaceConnectivity {
 
 FaceConnectivity match_faces(const MixedMesh& mesh);
 
+// The nodes of a face sorted ascending, padded with -1 for triangles: equal keys
+// mean the same face whatever the winding.
+std::array<Index, 4> sorted_face_key(const Index* nodes, int count);
+
 // The nodes of a cell face, in outward order; returns the node count (3 or 4).
 int face_nodes(const MixedMesh& mesh, const CellFace& face, Index* nodes);
 
