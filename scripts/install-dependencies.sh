@@ -6,7 +6,7 @@ set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config ccache clang clang-format libclang-rt-14-dev
   libeigen3-dev libtet1.5-dev libcgal-dev libgmp-dev libmpfr-dev libopenmesh-dev
-  libvtk9-dev libtomlplusplus-dev libcli11-dev libtbb-dev libnanoflann-dev libcgns-dev
+  libvtk9-dev libtomlplusplus-dev libcli11-dev libtbb-dev libnanoflann-dev libcgns-dev cgns-convert
   libgtest-dev libgmock-dev libbenchmark-dev
   python3 python3-numpy python3-scipy python3-meshio python3-vtk9 python3-matplotlib
   gmsh openfoam

@@ -8,5 +8,6 @@
 namespace mixmesh::cli {
 
 // add_NAME_command declarations go here, one per subcommand.
+void add_convert_command(CLI::App& application);
 
 }  // namespace mixmesh::cli
