@@ -14,7 +14,6 @@ namespace {
 struct FaceRecord {
   std::array<Index, 4> key;
   CellFace owner;
-  int tag_index;  // -1 for cell faces; index into the tagged-face list otherwise
 };
 
 // +1 or -1: the winding of `nodes` relative to its sorted order, defined as the
@@ -49,43 +48,36 @@ int face_nodes(const MixedMesh& mesh, const CellFace& face, Index* nodes) {
 FaceConnectivity match_faces(const MixedMesh& mesh) {
   // Bucket every face by its smallest node (counting sort), then match inside the
   // small buckets: linear in the number of faces, no hashing of whole faces.
+  // visit(key, owner) for every face of every cell.
+  auto for_each_cell_face = [&mesh](auto&& visit) {
+    for (CellType type : all_cell_types) {
+      const CellDescriptor& cell = descriptor(type);
+      const std::size_t count = mesh.cell_count(type);
+      for (std::size_t index_in_block = 0; index_in_block < count; ++index_in_block) {
+        const Index* nodes = mesh.cell(type, index_in_block);
+        for (int face = 0; face < cell.face_count; ++face) {
+          const LocalFace& local = cell.faces[face];
+          Index corners[4] = {-1, -1, -1, -1};
+          for (int corner = 0; corner < local.node_count; ++corner) corners[corner] = nodes[local.nodes[corner]];
+          visit(sorted_face_key(corners, local.node_count), CellFace{type, static_cast<Index>(index_in_block), face});
+        }
+      }
+    }
+  };
   const std::size_t point_count = mesh.points.size();
   std::vector<std::size_t> start(point_count + 1, 0);
   std::size_t face_total = 0;
-  for (CellType type : all_cell_types) {
-    const CellDescriptor& cell = descriptor(type);
-    const std::size_t count = mesh.cell_count(type);
-    for (std::size_t index_in_block = 0; index_in_block < count; ++index_in_block) {
-      const Index* nodes = mesh.cell(type, index_in_block);
-      for (int face = 0; face < cell.face_count; ++face) {
-        const LocalFace& local = cell.faces[face];
-        Index smallest = nodes[local.nodes[0]];
-        for (int corner = 1; corner < local.node_count; ++corner)
-          smallest = std::min(smallest, nodes[local.nodes[corner]]);
-        ++start[static_cast<std::size_t>(smallest) + 1];
-        ++face_total;
-      }
-    }
-  }
+  for_each_cell_face([&](const std::array<Index, 4>& key, const CellFace&) {
+    ++start[static_cast<std::size_t>(key[0]) + 1];
+    ++face_total;
+  });
   for (std::size_t point = 0; point < point_count; ++point) start[point + 1] += start[point];
 
   std::vector<FaceRecord> records(face_total);
   std::vector<std::size_t> fill(start.begin(), start.end() - 1);
-  for (CellType type : all_cell_types) {
-    const CellDescriptor& cell = descriptor(type);
-    const std::size_t count = mesh.cell_count(type);
-    for (std::size_t index_in_block = 0; index_in_block < count; ++index_in_block) {
-      const Index* nodes = mesh.cell(type, index_in_block);
-      for (int face = 0; face < cell.face_count; ++face) {
-        const LocalFace& local = cell.faces[face];
-        Index corners[4] = {-1, -1, -1, -1};
-        for (int corner = 0; corner < local.node_count; ++corner) corners[corner] = nodes[local.nodes[corner]];
-        FaceRecord record{sorted_face_key(corners, local.node_count),
-                          CellFace{type, static_cast<Index>(index_in_block), face}, -1};
-        records[fill[static_cast<std::size_t>(record.key[0])]++] = record;
-      }
-    }
-  }
+  for_each_cell_face([&](const std::array<Index, 4>& key, const CellFace& owner) {
+    records[fill[static_cast<std::size_t>(key[0])]++] = FaceRecord{key, owner};
+  });
 
   FaceConnectivity result;
   // Boundary cell faces, keyed for the comparison with the tagged faces below.
