@@ -8,9 +8,8 @@ namespace mixmesh {
 
 namespace {
 
-// A face as stored for matching: sorted nodes (the fourth is -1 for triangles),
-// the owner, and the position of the smallest node in the original winding and the
-// direction of travel, so two matches can be compared for orientation.
+// A face as stored for matching: its sorted nodes (the fourth is -1 for triangles)
+// and the cell face it came from (whose winding decides the orientation check).
 struct FaceRecord {
   std::array<Index, 4> key;
   CellFace owner;
