@@ -1,0 +1,103 @@
+// Far field (Wild §II.F, method.md §6): tetrahedra between the interface hull and an
+// outer boundary, by TetGen's constrained Delaunay tetrahedralisation.
+//
+//   input   points (the layered mesh's, so hull indices are global), the hull triangles
+//           (right-hand normal into the far field), optionally a metric per hull node
+//   output  MixedMesh whose points are the input points followed by the new ones, with
+//           tetrahedra (VTK order, positive volume) and boundary triangles tagged
+//           `symmetry_marker` / `farfield_marker`. The hull faces are left untagged: they
+//           are interior once the layers are added, so assembly is a concatenation of
+//           cells plus the layers' own boundary faces.
+//
+// The boundary handed to TetGen is closed: the hull; if the hull is open, a symmetry
+// plane y = symmetry_y triangulated between the hull's footprint and the far-field edge
+// (CGAL 2D constrained Delaunay, graded by the size field); and a half sphere (full
+// sphere for a closed hull) or a box of half-width radius_in_chords × chord. TetGen runs
+// with -p (PLC), -Y (the boundary triangles are kept exactly, so the tetrahedra match
+// the layers' faces), -q (radius-edge bound) and -m (a size per boundary point, growing
+// linearly away from the hull). A self-intersecting boundary is located with -d and
+// reported as mixmesh::Error.
+//
+// Anisotropic sizing continues the layer growth in metric space: from every hull node,
+// points are placed along the smoothed outward normal at the normal spacing its metric
+// gives, growing by `layer_growth` until the spacing reaches the node's smallest
+// tangential spacing (the cell is isotropic), then the isotropic grading takes over.
+#pragma once
+
+#include <array>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "mixmesh/core/log.hpp"
+#include "mixmesh/mesh/mixed_mesh.hpp"
+#include "mixmesh/metric/metric.hpp"
+#include "mixmesh/precondition/precondition.hpp"
+
+namespace mixmesh {
+
+enum class FarFieldShape { sphere, box };
+enum class FarFieldSizing { isotropic, anisotropic };
+
+struct FarFieldOptions {
+  FarFieldShape shape = FarFieldShape::sphere;
+  FarFieldSizing sizing = FarFieldSizing::isotropic;
+  double reference_chord = 0.0;          // 0: the hull's extent in x
+  double radius_in_chords = 20.0;        // sphere radius or box half-width
+  double farfield_size_in_chords = 2.0;  // edge length on the outer boundary
+  double size_gradient = 0.25;           // size grows by this much per unit distance from the hull
+  double radius_edge_ratio = 1.5;        // TetGen -q bound
+  double symmetry_y = 0.0;               // the symmetry plane of an open hull
+  double symmetry_tolerance = 1e-9;      // × chord: how far off the plane a footprint node may be
+  double plane_minimum_angle = 25.0;     // degrees, quality bound of the symmetry-plane triangles
+  // Anisotropic sizing.
+  double layer_growth = 1.25;  // ratio of successive normal spacings
+  int maximum_layers = 40;
+  double minimum_metric_distance = 0.6;  // inserted points closer than this (metric) are dropped
+  // Preconditioning of the point set before TetGen (method.md §5): shear + whitening by
+  // default, the fastest variant measured (docs/farfield.md).
+  bool precondition = true;
+  PreconditionOptions preconditioning;
+  // When set, the closed boundary is written there as legacy VTK after each transform:
+  // boundary.vtk (as built), sheared.vtk (S⁻¹ P) and preconditioned.vtk (F P).
+  std::filesystem::path dump_directory;
+  std::string symmetry_marker = "symmetry";
+  std::string farfield_marker = "farfield";
+};
+
+struct FarFieldInput {
+  std::vector<Vector3> points;
+  std::vector<std::array<Index, 3>> hull;
+  // Metrics of hull nodes (parallel lists); required for anisotropic sizing.
+  std::vector<Index> metric_nodes;
+  std::vector<Matrix3> metrics;
+};
+
+// Distribution of the metric lengths of the edges of tetrahedra with a face on the
+// hull, each measured in the log-Euclidean mean metric of that face's nodes.
+struct MetricLengthReport {
+  std::size_t edges = 0;
+  double within_range = 0.0;  // fraction in [0.6, 1.6]
+  double median = 0.0;
+  double lower_decile = 0.0;
+  double upper_decile = 0.0;
+};
+
+struct FarFieldResult {
+  MixedMesh mesh;
+  std::size_t input_point_count = 0;
+  std::size_t boundary_points = 0;  // symmetry-plane and far-field points added to the boundary
+  std::size_t layer_points = 0;     // anisotropic points offered to TetGen
+  std::size_t steiner_points = 0;   // points TetGen added in the volume
+  double chord = 0.0;
+  MetricLengthReport hull_lengths;  // only when metrics were given
+};
+
+FarFieldResult farfield(const FarFieldInput& input, const FarFieldOptions& options = {},
+                        const Log& log = Log());
+
+MetricLengthReport hull_metric_lengths(const MixedMesh& mesh, const std::vector<std::array<Index, 3>>& hull,
+                                       const std::vector<Index>& metric_nodes,
+                                       const std::vector<Matrix3>& metrics);
+
+}  // namespace mixmesh

@@ -1,0 +1,84 @@
+// Interface layer (Wild §II.C, Fig. 2): the outermost structured layer becomes a
+// triangulated hull for the far-field tetrahedralisation.
+//
+// Every listed hexahedron is split about its centre point (the mean of its nodes)
+// into pyramids, one per face with the apex at the centre, and the pyramid on each
+// outer face is split into two tetrahedra along one diagonal of the outer quad. Side
+// and inner faces keep their quads (the pyramid bases are those quads), so
+// neighbouring hexahedra, prisms and split hexahedra stay conforming. A cell may have
+// several outer faces (the top and an exposed side of a column standing above a
+// neighbour whose growth stopped earlier): list it once per outer face. A prism whose
+// outer faces are its triangles passes through; a prism with an outer quad is split
+// the same way (tetrahedra on its triangles and outer quads, pyramids on the rest).
+//
+//   input   MixedMesh (the boundary layers) + OuterLayer (which cells, which face is outer)
+//   output  the same mesh with the hexahedra replaced (#centres points appended after
+//           the input points, regions inherited), and the hull: triangles oriented
+//           with their right-hand normal pointing away from the layers (into the far field)
+//
+// Boundary faces: tagged faces on a split hexahedron's side faces stay as they are (the
+// split keeps those quads). A tagged face on an outer face is replaced by the hull
+// triangles, which carry the marker `hull_marker`; every other tag is kept.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "mixmesh/mesh/mixed_mesh.hpp"
+
+namespace mixmesh {
+
+// One cell of the outermost layer and which of its faces (local face number in the
+// cell's descriptor, e.g. 1 = the top 4-5-6-7 of a hexahedron, 1 = the top 3-5-4 of a
+// prism) faces the far field.
+struct OuterCell {
+  std::size_t cell = 0;  // index in the mesh's block of that cell type
+  int outer_face = 1;
+};
+
+struct OuterLayer {
+  std::vector<OuterCell> hexahedra;
+  std::vector<OuterCell> prisms;
+};
+
+// How each outer quad is cut into two hull triangles. The two triangles of a quad
+// belong to one hexahedron, so any choice conforms; the rule only has to be
+// deterministic (same mesh → same hull).
+enum class HullDiagonal {
+  shorter,        // the shorter diagonal (better triangles); ties go to smallest_node
+  smallest_node,  // the diagonal through the quad's smallest global node index
+};
+
+struct InterfaceOptions {
+  HullDiagonal diagonal = HullDiagonal::shorter;
+  std::string hull_marker = "interface";
+  // A cell whose centre split would give an inverted piece (a thin cell with a warped
+  // face, e.g. deep in the layers beside a free edge) is kept whole and each of its
+  // outer quads gets a pyramid outside it, apex above the quad's centre at cap_height
+  // times the quad's shortest edge; false: such a cell is an error.
+  bool cap_unsplittable_cells = true;
+  double cap_height = 0.25;
+};
+
+struct InterfaceResult {
+  MixedMesh mesh;
+  std::vector<std::array<Index, 3>> hull;  // outward triangles, node indices into mesh.points
+  std::vector<Index> centres;              // the centre point of each split cell, in input order
+  std::size_t pyramids = 0;
+  std::size_t tetrahedra = 0;
+  std::size_t capped_cells = 0;  // kept whole with pyramids outside (see InterfaceOptions)
+};
+
+// Throws mixmesh::Error for a cell index out of range, an outer face number out of
+// range, the same face listed twice, an outer face shared with another cell, or a
+// split that would give an inverted piece (naming the cell, the face and a location).
+InterfaceResult split_interface(const MixedMesh& mesh, const OuterLayer& layer,
+                                const InterfaceOptions& options = {});
+
+// The edges of the hull used by exactly one hull triangle (the footprint on a symmetry
+// plane, or the free edges of an open hull), each oriented as in its triangle.
+std::vector<std::array<Index, 2>> hull_free_edges(const std::vector<std::array<Index, 3>>& hull);
+
+}  // namespace mixmesh

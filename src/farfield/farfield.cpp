@@ -1,0 +1,348 @@
+#include "mixmesh/farfield/farfield.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <sstream>
+
+#include "farfield/farfield_parts.hpp"
+#include "mixmesh/core/error.hpp"
+#include "mixmesh/interface/interface_split.hpp"
+#include "mixmesh/mesh/cell_geometry.hpp"
+
+namespace mixmesh {
+
+namespace {
+
+using farfield_parts::Triangle;
+using FaceKey = std::array<Index, 3>;
+
+FaceKey sorted(FaceKey key) {
+  std::sort(key.begin(), key.end());
+  return key;
+}
+
+std::string point_text(const Vector3& point) {
+  std::ostringstream text;
+  text << "(" << point.x() << ", " << point.y() << ", " << point.z() << ")";
+  return text.str();
+}
+
+void validate(const FarFieldInput& input, const FarFieldOptions& options) {
+  if (input.hull.empty()) throw Error("farfield: the hull has no triangles");
+  for (std::size_t face = 0; face < input.hull.size(); ++face)
+    for (Index node : input.hull[face])
+      if (node < 0 || static_cast<std::size_t>(node) >= input.points.size())
+        throw Error("farfield: hull triangle " + std::to_string(face) + " uses node " + std::to_string(node) +
+                    ", not one of the " + std::to_string(input.points.size()) + " points");
+  if (input.metric_nodes.size() != input.metrics.size())
+    throw Error("farfield: " + std::to_string(input.metric_nodes.size()) + " metric nodes but " +
+                std::to_string(input.metrics.size()) + " metrics");
+  if (!(options.radius_in_chords > 0.0) || !(options.farfield_size_in_chords > 0.0) ||
+      !(options.size_gradient > 0.0) || !(options.radius_edge_ratio > 1.0) || options.reference_chord < 0.0)
+    throw Error(
+        "farfield: radius, far-field size and size gradient must be positive, the radius-edge bound above 1");
+  if (options.sizing == FarFieldSizing::anisotropic && !(options.layer_growth > 1.0))
+    throw Error("farfield: layer_growth must be above 1, not " + std::to_string(options.layer_growth));
+  std::map<std::pair<Index, Index>, int> edge_use;
+  for (const auto& triangle : input.hull)
+    for (int corner = 0; corner < 3; ++corner) {
+      const Index a = triangle[static_cast<std::size_t>(corner)],
+                  b = triangle[static_cast<std::size_t>((corner + 1) % 3)];
+      if (++edge_use[{std::min(a, b), std::max(a, b)}] > 2)
+        throw Error("farfield: the hull edge " + std::to_string(a) + "-" + std::to_string(b) + " at " +
+                    point_text(input.points[static_cast<std::size_t>(a)]) +
+                    " belongs to more than two triangles");
+    }
+}
+
+}  // namespace
+
+MetricLengthReport hull_metric_lengths(const MixedMesh& mesh, const std::vector<std::array<Index, 3>>& hull,
+                                       const std::vector<Index>& metric_nodes,
+                                       const std::vector<Matrix3>& metrics) {
+  std::map<Index, const Matrix3*> metric_of;
+  for (std::size_t entry = 0; entry < metric_nodes.size(); ++entry)
+    metric_of[metric_nodes[entry]] = &metrics[entry];
+  std::map<FaceKey, std::size_t> hull_face;
+  for (std::size_t face = 0; face < hull.size(); ++face) hull_face[sorted(hull[face])] = face;
+
+  std::vector<double> lengths;
+  const std::size_t count = mesh.cell_count(CellType::tetrahedron);
+  for (std::size_t cell = 0; cell < count; ++cell) {
+    const Index* nodes = mesh.cell(CellType::tetrahedron, cell);
+    for (int face = 0; face < tetrahedron_descriptor.face_count; ++face) {
+      const LocalFace& local = tetrahedron_descriptor.faces[static_cast<std::size_t>(face)];
+      const FaceKey key = sorted({nodes[local.nodes[0]], nodes[local.nodes[1]], nodes[local.nodes[2]]});
+      if (!hull_face.count(key)) continue;
+      std::vector<Matrix3> face_metrics;
+      for (Index node : key) {
+        const auto found = metric_of.find(node);
+        if (found != metric_of.end()) face_metrics.push_back(*found->second);
+      }
+      if (face_metrics.empty()) continue;
+      const Matrix3 metric = log_euclidean_mean(face_metrics);
+      for (int edge_number = 0; edge_number < tetrahedron_descriptor.edge_count; ++edge_number) {
+        const auto& edge = tetrahedron_descriptor.edges[static_cast<std::size_t>(edge_number)];
+        lengths.push_back(metric_length(metric, mesh.points[static_cast<std::size_t>(nodes[edge[1]])] -
+                                                    mesh.points[static_cast<std::size_t>(nodes[edge[0]])]));
+      }
+    }
+  }
+  MetricLengthReport report;
+  report.edges = lengths.size();
+  if (lengths.empty()) return report;
+  std::sort(lengths.begin(), lengths.end());
+  auto quantile = [&](double fraction) {
+    return lengths[std::min(lengths.size() - 1,
+                            static_cast<std::size_t>(fraction * static_cast<double>(lengths.size())))];
+  };
+  report.median = quantile(0.5);
+  report.lower_decile = quantile(0.1);
+  report.upper_decile = quantile(0.9);
+  const auto within = std::count_if(lengths.begin(), lengths.end(),
+                                    [](double length) { return length >= 0.6 && length <= 1.6; });
+  report.within_range = static_cast<double>(within) / static_cast<double>(lengths.size());
+  return report;
+}
+
+FarFieldResult farfield(const FarFieldInput& input, const FarFieldOptions& options, const Log& log) {
+  validate(input, options);
+  FarFieldResult result;
+  result.input_point_count = input.points.size();
+
+  // Hull nodes first in the TetGen point list (local numbering), in order of use.
+  std::vector<Index> global_of;  // local → global for the boundary points that exist already
+  std::map<Index, Index> local_of;
+  for (const auto& triangle : input.hull)
+    for (Index node : triangle)
+      if (local_of.emplace(node, static_cast<Index>(global_of.size())).second) global_of.push_back(node);
+  std::vector<Vector3> points;
+  for (Index node : global_of) points.push_back(input.points[static_cast<std::size_t>(node)]);
+  std::vector<Triangle> hull;
+  for (const auto& triangle : input.hull)
+    hull.push_back({local_of[triangle[0]], local_of[triangle[1]], local_of[triangle[2]]});
+
+  Vector3 low = points.front(), high = points.front();
+  for (const Vector3& point : points) {
+    low = low.cwiseMin(point);
+    high = high.cwiseMax(point);
+  }
+  result.chord = options.reference_chord > 0.0 ? options.reference_chord : high.x() - low.x();
+  if (!(result.chord > 0.0)) throw Error("farfield: the hull has no extent in x; set a reference chord");
+  const double radius = options.radius_in_chords * result.chord;
+  const double farfield_size = options.farfield_size_in_chords * result.chord;
+
+  // An open hull must be open along the symmetry plane only.
+  const std::vector<std::array<Index, 2>> footprint = hull_free_edges(hull);
+  const bool symmetric = !footprint.empty();
+  for (const auto& edge : footprint)
+    for (Index node : edge)
+      if (std::abs(points[static_cast<std::size_t>(node)].y() - options.symmetry_y) >
+          options.symmetry_tolerance * result.chord)
+        throw Error("farfield: the hull is open at node " +
+                    std::to_string(global_of[static_cast<std::size_t>(node)]) + " " +
+                    point_text(points[static_cast<std::size_t>(node)]) +
+                    ", which is off the symmetry plane y = " + std::to_string(options.symmetry_y));
+  Vector3 centre = 0.5 * (low + high);
+  if (symmetric) centre.y() = options.symmetry_y;
+  for (const Vector3& point : points)
+    if ((point - centre).norm() > 0.5 * radius)
+      throw Error("farfield: the hull point " + point_text(point) +
+                  " is too close to the far-field boundary (radius " + std::to_string(radius) +
+                  "); raise radius_in_chords");
+
+  // Size field: each hull node's mean edge length, growing linearly away from the hull.
+  std::vector<double> hull_size(points.size(), 0.0);
+  std::vector<int> hull_edges(points.size(), 0);
+  for (const Triangle& triangle : hull)
+    for (int corner = 0; corner < 3; ++corner) {
+      const Index a = triangle[static_cast<std::size_t>(corner)],
+                  b = triangle[static_cast<std::size_t>((corner + 1) % 3)];
+      const double length =
+          (points[static_cast<std::size_t>(a)] - points[static_cast<std::size_t>(b)]).norm();
+      for (Index node : {a, b}) {
+        hull_size[static_cast<std::size_t>(node)] += length;
+        ++hull_edges[static_cast<std::size_t>(node)];
+      }
+    }
+  for (std::size_t node = 0; node < points.size(); ++node) hull_size[node] /= hull_edges[node];
+  farfield_parts::SizeField size{{}, {}, options.size_gradient, farfield_size};
+  // Sources: every footprint node and at most ~2000 hull nodes, so evaluating the field
+  // stays cheap; the growth is slow, so a sparse sample changes sizes little.
+  std::vector<char> is_source(points.size(), 0);
+  for (const auto& edge : footprint) is_source[static_cast<std::size_t>(edge[0])] = 1;
+  const std::size_t stride = std::max<std::size_t>(1, points.size() / 2000);
+  for (std::size_t node = 0; node < points.size(); node += stride) is_source[node] = 1;
+  for (std::size_t node = 0; node < points.size(); ++node)
+    if (is_source[node]) {
+      size.sources.push_back(points[node]);
+      size.sizes.push_back(hull_size[node]);
+    }
+
+  farfield_parts::LayerPoints layers;
+  if (options.sizing == FarFieldSizing::anisotropic) {
+    FarFieldInput local_input{points, hull, {}, {}};
+    for (std::size_t entry = 0; entry < input.metric_nodes.size(); ++entry) {
+      const auto found = local_of.find(input.metric_nodes[entry]);
+      if (found == local_of.end()) continue;
+      local_input.metric_nodes.push_back(found->second);
+      local_input.metrics.push_back(input.metrics[entry]);
+    }
+    layers = farfield_parts::layer_points(local_input, footprint, symmetric, options);
+    result.layer_points = layers.volume.size() + layers.plane.size();
+  }
+
+  const std::size_t hull_point_count = points.size();
+  const farfield_parts::OuterBoundary outer =
+      farfield_parts::outer_boundary(options.shape, centre, radius, farfield_size, symmetric, points);
+  std::vector<Triangle> plane;
+  if (symmetric)
+    plane = farfield_parts::symmetry_plane(options.symmetry_y, outer.rim, footprint, layers.plane, size,
+                                           options.plane_minimum_angle, points);
+  result.boundary_points = points.size() - hull_point_count;
+  log.detail("farfield: " + std::to_string(hull.size()) + " hull, " + std::to_string(plane.size()) +
+             " symmetry, " + std::to_string(outer.triangles.size()) + " far-field triangles");
+
+  farfield_parts::TetgenInput tetgen;
+  tetgen.radius_edge_ratio = options.radius_edge_ratio;
+  tetgen.points = points;
+  for (std::size_t node = 0; node < points.size(); ++node)
+    tetgen.sizes.push_back(node < hull_point_count ? hull_size[node] : size(points[node]));
+  tetgen.triangles = hull;
+  tetgen.triangles.insert(tetgen.triangles.end(), plane.begin(), plane.end());
+  tetgen.triangles.insert(tetgen.triangles.end(), outer.triangles.begin(), outer.triangles.end());
+  // A hole just behind the largest hull triangle keeps TetGen out of the body.
+  std::size_t largest = 0;
+  double largest_area = -1.0;
+  for (std::size_t face = 0; face < hull.size(); ++face) {
+    const double area = face_area_vector(points, hull[face].data(), 3).norm();
+    if (area > largest_area) largest_area = area, largest = face;
+  }
+  const Vector3 hole_normal = face_area_vector(points, hull[largest].data(), 3).normalized();
+  Vector3 hole_centre = Vector3::Zero();
+  for (Index node : hull[largest]) hole_centre += points[static_cast<std::size_t>(node)] / 3.0;
+  tetgen.holes.push_back(hole_centre - 1e-3 * std::sqrt(largest_area) * hole_normal);
+
+  Eigen::Matrix3d forward = Eigen::Matrix3d::Identity(), backward = Eigen::Matrix3d::Identity();
+  const bool dump = !options.dump_directory.empty();
+  if (dump) dump_surface(options.dump_directory / "boundary.vtk", points, tetgen.triangles);
+  if (options.precondition) {
+    const Preconditioning map = precondition(points, tetgen.triangles, options.preconditioning);
+    forward = map.forward;
+    backward = map.backward;
+    log.detail("farfield: preconditioned with sweep " + std::to_string(map.sweep_degrees) + " degrees");
+    if (dump) {
+      dump_surface(options.dump_directory / "sheared.vtk", transform_points(map.shear.inverse(), points),
+                   tetgen.triangles);
+      dump_surface(options.dump_directory / "preconditioned.vtk", transform_points(forward, points),
+                   tetgen.triangles);
+    }
+  }
+  tetgen.points = transform_points(forward, tetgen.points);
+  tetgen.holes = transform_points(forward, tetgen.holes);
+
+  // Isotropic: one quality run. Anisotropic: the quality run's interior points away
+  // from the layers, plus the layer points, as isolated input points of a run without
+  // -q (refinement would break the thin layer tetrahedra up again). Input points
+  // rather than -i: with -Y, TetGen rejects -i points that encroach a boundary
+  // triangle, which is exactly where the first layers lie.
+  std::vector<Vector3> volume_points;  // original coordinates of the isolated input points
+  farfield_parts::TetgenOutput tetrahedra = farfield_parts::run_tetgen(tetgen);
+  if (options.sizing == FarFieldSizing::anisotropic) {
+    std::vector<Vector3> isotropic_points;
+    for (std::size_t node = points.size(); node < tetrahedra.points.size(); ++node)
+      isotropic_points.push_back(backward * tetrahedra.points[node]);
+    std::vector<Vector3> near_layers(points.begin(),
+                                     points.begin() + static_cast<std::ptrdiff_t>(hull_point_count));
+    near_layers.insert(near_layers.end(), layers.volume.begin(), layers.volume.end());
+    near_layers.insert(near_layers.end(), layers.plane.begin(), layers.plane.end());
+    volume_points = layers.volume;
+    const std::vector<Vector3> kept = farfield_parts::points_beyond(isotropic_points, near_layers, size, 0.7);
+    volume_points.insert(volume_points.end(), kept.begin(), kept.end());
+    for (const Vector3& point : volume_points) tetgen.sizes.push_back(size(point));
+    const std::vector<Vector3> mapped = transform_points(forward, volume_points);
+    tetgen.points.insert(tetgen.points.end(), mapped.begin(), mapped.end());
+    tetgen.quality = false;
+    tetrahedra = farfield_parts::run_tetgen(tetgen);
+  }
+
+  // Back to global numbering: hull nodes keep theirs; every other point a tetrahedron
+  // uses is appended in TetGen's order (points TetGen left unused are dropped).
+  MixedMesh& mesh = result.mesh;
+  mesh.points = input.points;
+  std::vector<char> used(tetrahedra.points.size(), 0);
+  for (const auto& local : tetrahedra.tetrahedra)
+    for (Index node : local) used[static_cast<std::size_t>(node)] = 1;
+  std::vector<Index> global(tetrahedra.points.size(), -1);
+  for (std::size_t node = 0; node < tetrahedra.points.size(); ++node) {
+    if (node < hull_point_count) {
+      global[node] = global_of[node];
+    } else if (used[node]) {
+      global[node] = static_cast<Index>(mesh.points.size());
+      // Input points keep their exact coordinates; only TetGen's own are mapped back.
+      if (node < points.size()) {
+        mesh.points.push_back(points[node]);
+      } else if (node < tetgen.points.size()) {
+        mesh.points.push_back(volume_points[node - points.size()]);
+      } else {
+        mesh.points.push_back(backward * tetrahedra.points[node]);
+        ++result.steiner_points;
+      }
+    }
+  }
+  for (const auto& local : tetrahedra.tetrahedra) {
+    Index nodes[4] = {global[static_cast<std::size_t>(local[0])], global[static_cast<std::size_t>(local[1])],
+                      global[static_cast<std::size_t>(local[2])], global[static_cast<std::size_t>(local[3])]};
+    const auto& p = mesh.points;
+    if (tetrahedron_volume6(p[static_cast<std::size_t>(nodes[0])], p[static_cast<std::size_t>(nodes[1])],
+                            p[static_cast<std::size_t>(nodes[2])],
+                            p[static_cast<std::size_t>(nodes[3])]) < 0.0)
+      std::swap(nodes[1], nodes[2]);
+    mesh.add_cell(CellType::tetrahedron, nodes);
+  }
+
+  // Boundary: every tetrahedron face used once must be one of the input triangles.
+  const int symmetry_marker = mesh.marker(options.symmetry_marker);
+  const int farfield_marker = mesh.marker(options.farfield_marker);
+  std::map<FaceKey, int> boundary_marker;  // -1: hull
+  auto to_global = [&](const Triangle& triangle) {
+    return sorted({global[static_cast<std::size_t>(triangle[0])],
+                   global[static_cast<std::size_t>(triangle[1])],
+                   global[static_cast<std::size_t>(triangle[2])]});
+  };
+  for (const Triangle& triangle : hull) boundary_marker[to_global(triangle)] = -1;
+  for (const Triangle& triangle : plane) boundary_marker[to_global(triangle)] = symmetry_marker;
+  for (const Triangle& triangle : outer.triangles) boundary_marker[to_global(triangle)] = farfield_marker;
+  std::map<FaceKey, std::pair<int, std::array<Index, 3>>> faces;
+  for (std::size_t cell = 0; cell < mesh.cell_count(CellType::tetrahedron); ++cell) {
+    const Index* nodes = mesh.cell(CellType::tetrahedron, cell);
+    for (int number = 0; number < tetrahedron_descriptor.face_count; ++number) {
+      const LocalFace& local = tetrahedron_descriptor.faces[static_cast<std::size_t>(number)];
+      const std::array<Index, 3> face = {nodes[local.nodes[0]], nodes[local.nodes[1]], nodes[local.nodes[2]]};
+      auto& entry = faces[sorted(face)];
+      if (entry.first++ == 0) entry.second = face;
+    }
+  }
+  std::size_t matched = 0;
+  for (const auto& [key, entry] : faces) {
+    if (entry.first != 1) continue;
+    const auto found = boundary_marker.find(key);
+    if (found == boundary_marker.end())
+      throw Error("farfield: TetGen left a boundary face that is not an input triangle, near " +
+                  point_text(mesh.points[static_cast<std::size_t>(key[0])]));
+    ++matched;
+    if (found->second >= 0) mesh.add_face(FaceType::triangle, entry.second.data(), found->second);
+  }
+  if (matched != boundary_marker.size())
+    throw Error("farfield: " + std::to_string(boundary_marker.size() - matched) +
+                " boundary triangles are not faces of the tetrahedra (TetGen changed the boundary)");
+
+  if (!input.metrics.empty())
+    result.hull_lengths = hull_metric_lengths(mesh, input.hull, input.metric_nodes, input.metrics);
+  log.info("farfield: " + std::to_string(mesh.cell_count(CellType::tetrahedron)) + " tetrahedra, " +
+           std::to_string(mesh.points.size() - input.points.size()) + " new points");
+  return result;
+}
+
+}  // namespace mixmesh

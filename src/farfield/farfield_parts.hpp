@@ -1,0 +1,77 @@
+// Parts of the far-field stage: the size field, the outer boundary, the symmetry
+// plane, the anisotropic layer points and the TetGen call.
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include "mixmesh/farfield/farfield.hpp"
+
+namespace mixmesh::farfield_parts {
+
+using Triangle = std::array<Index, 3>;
+
+// Target edge length: min(maximum, size_k + gradient · |p − source_k|) over the
+// sources (hull nodes with their local edge length), i.e. linear growth away from the
+// hull capped at the far-field size.
+struct SizeField {
+  std::vector<Vector3> sources;
+  std::vector<double> sizes;
+  double gradient = 0.25;
+  double maximum = 1.0;
+  double operator()(const Vector3& point) const;
+};
+
+// Points are appended to `points`; triangles use indices into it.
+struct OuterBoundary {
+  std::vector<Triangle> triangles;
+  std::vector<Index> rim;  // closed loop on the symmetry plane (half boundaries only)
+};
+
+// A sphere or box of half-width `radius` about `centre`, with target edge length
+// `size`; `half` keeps only y ≥ centre.y and leaves the face on the plane open.
+OuterBoundary outer_boundary(FarFieldShape shape, const Vector3& centre, double radius, double size,
+                             bool half, std::vector<Vector3>& points);
+
+// Graded triangulation of the plane y = plane_y between the rim (outer loop) and the
+// footprint edges (holes), through the extra points (anisotropic layer points on the
+// plane). New points are appended to `points`. Throws mixmesh::Error when a footprint
+// edge is lost (the footprint crosses itself or the rim).
+std::vector<Triangle> symmetry_plane(double plane_y, const std::vector<Index>& rim,
+                                     const std::vector<std::array<Index, 2>>& footprint,
+                                     const std::vector<Vector3>& extra_points, const SizeField& size,
+                                     double minimum_angle_degrees, std::vector<Vector3>& points);
+
+// Anisotropic layer points grown from the hull nodes (see farfield.hpp). Points on the
+// symmetry plane (from footprint nodes) are returned separately for the plane
+// triangulation.
+struct LayerPoints {
+  std::vector<Vector3> volume;
+  std::vector<Vector3> plane;
+};
+LayerPoints layer_points(const FarFieldInput& input, const std::vector<std::array<Index, 2>>& footprint,
+                         bool symmetric, const FarFieldOptions& options);
+
+// The candidates farther than ratio × size(candidate) from every one of `near`.
+std::vector<Vector3> points_beyond(const std::vector<Vector3>& candidates, const std::vector<Vector3>& near,
+                                   const SizeField& size, double ratio);
+
+struct TetgenInput {
+  std::vector<Vector3> points;      // boundary points, then isolated volume points
+  std::vector<double> sizes;        // one per point (-m)
+  std::vector<Triangle> triangles;  // the closed boundary
+  std::vector<Vector3> holes;
+  double radius_edge_ratio = 1.5;
+  bool quality = true;  // -q and -m; off, TetGen only recovers the boundary
+};
+
+struct TetgenOutput {
+  std::vector<Vector3> points;  // the input points first, in order, then TetGen's
+  std::vector<std::array<Index, 4>> tetrahedra;
+};
+
+// Throws mixmesh::Error naming the stage and a location for a self-intersecting or
+// otherwise unusable boundary.
+TetgenOutput run_tetgen(const TetgenInput& input);
+
+}  // namespace mixmesh::farfield_parts

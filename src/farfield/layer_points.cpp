@@ -1,0 +1,192 @@
+// Anisotropic points: the layer growth continued outward from the hull in metric space.
+
+#include <CGAL/AABB_traits.h>
+#include <CGAL/AABB_tree.h>
+#include <CGAL/AABB_triangle_primitive.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+
+#include <Eigen/Eigenvalues>
+#include <nanoflann.hpp>
+
+#include <algorithm>
+#include <map>
+#include <numeric>
+
+#include "farfield/farfield_parts.hpp"
+#include "mixmesh/core/error.hpp"
+
+namespace mixmesh::farfield_parts {
+
+namespace {
+
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Triangle3 = Kernel::Triangle_3;
+using Primitive = CGAL::AABB_triangle_primitive<Kernel, std::vector<Triangle3>::const_iterator>;
+using HullTree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, Primitive>>;
+
+struct Candidate {
+  Vector3 point;
+  double spacing;   // the normal spacing of its layer: the smallest size around it
+  double distance;  // from its hull node along the normal
+  bool on_plane;
+};
+
+struct CandidateCloud {
+  const std::vector<Candidate>* candidates;
+  std::size_t kdtree_get_point_count() const { return candidates->size(); }
+  double kdtree_get_pt(std::size_t index, std::size_t axis) const {
+    return (*candidates)[index].point(static_cast<Eigen::Index>(axis));
+  }
+  template <class Box>
+  bool kdtree_get_bbox(Box&) const {
+    return false;
+  }
+};
+using CandidateTree =
+    nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, CandidateCloud>, CandidateCloud,
+                                        3>;
+
+// Smallest spacing the metric asks for across the normal: 1/√μ with μ the largest
+// eigenvalue of the metric restricted to the tangent plane.
+double tangential_spacing(const Matrix3& metric, const Vector3& normal) {
+  const Vector3 first = normal.unitOrthogonal();
+  const Vector3 second = normal.cross(first);
+  Eigen::Matrix2d restricted;
+  restricted << first.dot(metric * first), first.dot(metric * second), second.dot(metric * first),
+      second.dot(metric * second);
+  return 1.0 / std::sqrt(Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(restricted).eigenvalues().maxCoeff());
+}
+
+}  // namespace
+
+LayerPoints layer_points(const FarFieldInput& input, const std::vector<std::array<Index, 2>>& footprint,
+                         bool symmetric, const FarFieldOptions& options) {
+  std::map<Index, std::size_t> slot;  // hull node → position in the node lists below
+  std::vector<Index> nodes;
+  for (const auto& triangle : input.hull)
+    for (Index node : triangle)
+      if (slot.emplace(node, nodes.size()).second) nodes.push_back(node);
+  std::vector<const Matrix3*> metric(nodes.size(), nullptr);
+  for (std::size_t entry = 0; entry < input.metric_nodes.size(); ++entry) {
+    const auto found = slot.find(input.metric_nodes[entry]);
+    if (found != slot.end()) metric[found->second] = &input.metrics[entry];
+  }
+  for (std::size_t position = 0; position < nodes.size(); ++position)
+    if (!metric[position])
+      throw Error("farfield: anisotropic sizing needs a metric at every hull node; node " +
+                  std::to_string(nodes[position]) + " has none");
+
+  // Area-weighted normals, smoothed twice over the hull's edges so that columns from
+  // concave regions spread less.
+  auto at = [&](Index node) -> const Vector3& { return input.points[static_cast<std::size_t>(node)]; };
+  std::vector<Vector3> normal(nodes.size(), Vector3::Zero());
+  std::vector<std::vector<std::size_t>> neighbours(nodes.size());
+  for (const auto& triangle : input.hull) {
+    const Vector3 area = 0.5 * (at(triangle[1]) - at(triangle[0])).cross(at(triangle[2]) - at(triangle[0]));
+    for (int corner = 0; corner < 3; ++corner) {
+      const std::size_t here = slot[triangle[static_cast<std::size_t>(corner)]];
+      normal[here] += area;
+      neighbours[here].push_back(slot[triangle[static_cast<std::size_t>((corner + 1) % 3)]]);
+    }
+  }
+  std::vector<char> on_footprint(nodes.size(), 0);
+  for (const auto& edge : footprint) on_footprint[slot[edge[0]]] = on_footprint[slot[edge[1]]] = 1;
+  for (int pass = 0; pass < 3; ++pass) {
+    std::vector<Vector3> smoothed(nodes.size());
+    for (std::size_t position = 0; position < nodes.size(); ++position) {
+      Vector3 sum = normal[position].normalized() * 2.0;
+      for (std::size_t other : neighbours[position]) sum += normal[other].normalized();
+      if (symmetric && on_footprint[position]) sum.y() = 0.0;  // footprint columns stay on the plane
+      smoothed[position] = sum.normalized();
+    }
+    normal = smoothed;
+  }
+
+  std::vector<Triangle3> triangles;
+  for (const auto& triangle : input.hull) {
+    auto point = [&](int corner) {
+      const Vector3& p = at(triangle[static_cast<std::size_t>(corner)]);
+      return Kernel::Point_3(p.x(), p.y(), p.z());
+    };
+    triangles.emplace_back(point(0), point(1), point(2));
+  }
+  const HullTree hull_tree(triangles.begin(), triangles.end());
+
+  // Columns: normal spacing from the metric (1/√(nᵀ M n)), growing until it reaches
+  // the tangential spacing, where the isotropic grading takes over.
+  std::vector<Candidate> candidates;
+  for (std::size_t position = 0; position < nodes.size(); ++position) {
+    const Vector3& direction = normal[position];
+    const Matrix3& node_metric = *metric[position];
+    const double tangential = tangential_spacing(node_metric, direction);
+    double spacing = 1.0 / std::sqrt(direction.dot(node_metric * direction));
+    double distance = 0.0;
+    for (int layer = 0; layer < options.maximum_layers && spacing < tangential; ++layer) {
+      distance += spacing;
+      Vector3 point = at(nodes[position]) + distance * direction;
+      const bool plane = symmetric && on_footprint[position];
+      if (plane) point.y() = options.symmetry_y;
+      // A column that comes near another part of the hull (concave corners) stops.
+      const Kernel::Point_3 query(point.x(), point.y(), point.z());
+      if (hull_tree.squared_distance(query) < 0.25 * distance * distance) break;
+      if (symmetric && !plane && point.y() < options.symmetry_y + 0.5 * spacing) break;
+      candidates.push_back({point, spacing, distance, plane});
+      spacing *= options.layer_growth;
+    }
+  }
+
+  // Greedy thinning, smallest spacing first: a candidate removes the later ones within
+  // minimum_metric_distance of its own spacing.
+  std::vector<std::size_t> order(candidates.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return candidates[a].spacing < candidates[b].spacing;
+  });
+  const CandidateCloud cloud{&candidates};
+  CandidateTree tree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(16));
+  tree.buildIndex();
+  std::vector<char> alive(candidates.size(), 1);
+  std::vector<std::size_t> rank(candidates.size());
+  for (std::size_t position = 0; position < order.size(); ++position) rank[order[position]] = position;
+  std::vector<std::pair<unsigned, double>> found;
+  for (std::size_t candidate : order) {
+    if (!alive[candidate]) continue;
+    const double radius = options.minimum_metric_distance * candidates[candidate].spacing;
+    found.clear();
+    tree.radiusSearch(candidates[candidate].point.data(), radius * radius, found,
+                      nanoflann::SearchParams(32, 0, false));
+    for (const auto& [other, squared] : found)
+      if (rank[other] > rank[candidate]) alive[other] = 0;
+  }
+
+  LayerPoints result;
+  for (std::size_t candidate = 0; candidate < candidates.size(); ++candidate) {
+    if (!alive[candidate]) continue;
+    if (candidates[candidate].on_plane) {
+      result.plane.push_back(candidates[candidate].point);
+    } else {
+      result.volume.push_back(candidates[candidate].point);
+    }
+  }
+  return result;
+}
+
+std::vector<Vector3> points_beyond(const std::vector<Vector3>& candidates, const std::vector<Vector3>& near,
+                                   const SizeField& size, double ratio) {
+  std::vector<Candidate> cloud_points;
+  for (const Vector3& point : near) cloud_points.push_back({point, 0.0, 0.0, false});
+  const CandidateCloud cloud{&cloud_points};
+  CandidateTree tree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(16));
+  tree.buildIndex();
+  std::vector<Vector3> kept;
+  for (const Vector3& candidate : candidates) {
+    unsigned nearest = 0;
+    double squared = 0.0;
+    tree.knnSearch(candidate.data(), 1, &nearest, &squared);
+    const double limit = ratio * size(candidate);
+    if (squared > limit * limit) kept.push_back(candidate);
+  }
+  return kept;
+}
+
+}  // namespace mixmesh::farfield_parts

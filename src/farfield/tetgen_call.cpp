@@ -1,0 +1,143 @@
+// The TetGen 1.5 call: PLC in, tetrahedra out, errors as mixmesh::Error.
+
+#define TETLIBRARY  // the library build of TetGen: errors are thrown, not exit()
+#include <tetgen.h>
+
+#include <sstream>
+#include <string>
+
+#include "farfield/farfield_parts.hpp"
+#include "mixmesh/core/error.hpp"
+
+namespace mixmesh::farfield_parts {
+
+namespace {
+
+std::string point_text(const Vector3& point) {
+  std::ostringstream text;
+  text << "(" << point.x() << ", " << point.y() << ", " << point.z() << ")";
+  return text.str();
+}
+
+// Fills a tetgenio with the points, sizes and boundary triangles (tetgenio frees
+// what it holds with delete[]).
+void fill(tetgenio& io, const TetgenInput& input, bool with_sizes) {
+  io.firstnumber = 0;
+  io.numberofpoints = static_cast<int>(input.points.size());
+  io.pointlist = new REAL[3 * input.points.size()];
+  for (std::size_t point = 0; point < input.points.size(); ++point)
+    for (int axis = 0; axis < 3; ++axis)
+      io.pointlist[3 * point + static_cast<std::size_t>(axis)] = input.points[point](axis);
+  if (with_sizes) {
+    io.numberofpointmtrs = 1;
+    io.pointmtrlist = new REAL[input.sizes.size()];
+    std::copy(input.sizes.begin(), input.sizes.end(), io.pointmtrlist);
+  }
+  io.numberoffacets = static_cast<int>(input.triangles.size());
+  io.facetlist = new tetgenio::facet[input.triangles.size()];
+  io.facetmarkerlist = new int[input.triangles.size()];
+  for (std::size_t face = 0; face < input.triangles.size(); ++face) {
+    tetgenio::facet& facet = io.facetlist[face];
+    tetgenio::init(&facet);
+    facet.numberofpolygons = 1;
+    facet.polygonlist = new tetgenio::polygon[1];
+    tetgenio::init(&facet.polygonlist[0]);
+    facet.polygonlist[0].numberofvertices = 3;
+    facet.polygonlist[0].vertexlist = new int[3];
+    for (int corner = 0; corner < 3; ++corner)
+      facet.polygonlist[0].vertexlist[corner] = input.triangles[face][static_cast<std::size_t>(corner)];
+    io.facetmarkerlist[face] = static_cast<int>(face) + 1;
+  }
+  io.numberofholes = static_cast<int>(input.holes.size());
+  io.holelist = new REAL[3 * input.holes.size() + 1];
+  for (std::size_t hole = 0; hole < input.holes.size(); ++hole)
+    for (int axis = 0; axis < 3; ++axis)
+      io.holelist[3 * hole + static_cast<std::size_t>(axis)] = input.holes[hole](axis);
+}
+
+void run(const std::string& switches, tetgenio& in, tetgenio& out) {
+  tetgenbehavior behaviour;
+  std::vector<char> text(switches.begin(), switches.end());
+  text.push_back('\0');
+  if (!behaviour.parse_commandline(text.data()))
+    throw Error("farfield: TetGen rejected the switches " + switches);
+  tetrahedralize(&behaviour, &in, &out);
+}
+
+// Asks TetGen (-d) which boundary triangles intersect and names the first one.
+std::string intersection_location(const TetgenInput& input) {
+  tetgenio in, out;
+  fill(in, input, false);
+  try {
+    run("pdQz", in, out);
+  } catch (int) {
+    return "";
+  }
+  if (out.numberoftrifaces <= 0 || out.trifacelist == nullptr) return "";
+  Vector3 centre = Vector3::Zero();
+  for (int corner = 0; corner < 3; ++corner) {
+    const int node = out.trifacelist[corner];
+    centre +=
+        Vector3(out.pointlist[3 * node], out.pointlist[3 * node + 1], out.pointlist[3 * node + 2]) / 3.0;
+  }
+  std::ostringstream text;
+  text << " (" << out.numberoftrifaces << " intersecting boundary triangles, the first near "
+       << point_text(centre) << ")";
+  return text.str();
+}
+
+}  // namespace
+
+TetgenOutput run_tetgen(const TetgenInput& input) {
+  tetgenio in, out;
+  const bool with_sizes = input.quality && !input.sizes.empty();
+  fill(in, input, with_sizes);
+  // TetGen 1.5 frees its memory twice when it stops on an error inside the library, so
+  // a bad boundary must be caught before the real run: -d only reports intersections.
+  const std::string intersections = intersection_location(input);
+  if (!intersections.empty()) throw Error("farfield: the boundary intersects itself" + intersections);
+
+  // p: PLC; Y: no Steiner points on the boundary; q: radius-edge bound; m: sizes;
+  // J: keep every input point so indices stay; z: zero-based; Q: quiet.
+  std::ostringstream switches;
+  switches << "pY";
+  if (input.quality) switches << "q" << input.radius_edge_ratio << (with_sizes ? "m" : "");
+  switches << "JzQ";
+  try {
+    run(switches.str(), in, out);
+  } catch (int code) {
+    switch (code) {
+      case 1:
+        throw Error("farfield: TetGen ran out of memory");
+      case 3:
+        throw Error("farfield: the boundary intersects itself" + intersection_location(input));
+      case 4:
+        throw Error("farfield: the boundary has a feature too small for TetGen's tolerance");
+      case 5:
+        throw Error("farfield: two boundary triangles are too close" + intersection_location(input));
+      default:
+        throw Error("farfield: TetGen failed (code " + std::to_string(code) + ")" +
+                    intersection_location(input));
+    }
+  }
+
+  TetgenOutput result;
+  result.points.resize(static_cast<std::size_t>(out.numberofpoints));
+  for (std::size_t point = 0; point < result.points.size(); ++point)
+    result.points[point] =
+        Vector3(out.pointlist[3 * point], out.pointlist[3 * point + 1], out.pointlist[3 * point + 2]);
+  for (std::size_t point = 0; point < input.points.size(); ++point)
+    if (point >= result.points.size() || result.points[point] != input.points[point])
+      throw Error("farfield: TetGen renumbered the boundary point " + point_text(input.points[point]) +
+                  " (duplicate boundary points?)");
+  if (out.numberofcorners != 4)
+    throw Error("farfield: TetGen returned tetrahedra of " + std::to_string(out.numberofcorners) + " nodes");
+  result.tetrahedra.resize(static_cast<std::size_t>(out.numberoftetrahedra));
+  for (std::size_t tetrahedron = 0; tetrahedron < result.tetrahedra.size(); ++tetrahedron)
+    for (int corner = 0; corner < 4; ++corner)
+      result.tetrahedra[tetrahedron][static_cast<std::size_t>(corner)] =
+          out.tetrahedronlist[4 * tetrahedron + static_cast<std::size_t>(corner)];
+  return result;
+}
+
+}  // namespace mixmesh::farfield_parts

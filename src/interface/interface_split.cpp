@@ -1,0 +1,292 @@
+#include "mixmesh/interface/interface_split.hpp"
+
+#include <algorithm>
+#include <limits>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "mixmesh/core/error.hpp"
+#include "mixmesh/mesh/cell_geometry.hpp"
+#include "mixmesh/mesh/face_connectivity.hpp"
+
+namespace mixmesh {
+
+namespace {
+
+using FaceKey = std::array<Index, 4>;
+
+FaceKey sorted_key(const Index* nodes, int count) {
+  FaceKey key{nodes[0], nodes[1], nodes[2], count == 4 ? nodes[3] : -1};
+  // Insertion sort: std::sort on three or four entries trips GCC 12's array-bounds check.
+  for (int next = 1; next < count; ++next)
+    for (int slot = next;
+         slot > 0 && key[static_cast<std::size_t>(slot - 1)] > key[static_cast<std::size_t>(slot)]; --slot)
+      std::swap(key[static_cast<std::size_t>(slot - 1)], key[static_cast<std::size_t>(slot)]);
+  return key;
+}
+
+std::string point_text(const Vector3& point) {
+  std::ostringstream text;
+  text << "(" << point.x() << ", " << point.y() << ", " << point.z() << ")";
+  return text.str();
+}
+
+// Checks the outer-layer listing against the mesh before anything is built, so a bad
+// listing fails with the offending cell named rather than with a broken mesh.
+void validate(const MixedMesh& mesh, const OuterLayer& layer) {
+  const FaceConnectivity connectivity = match_faces(mesh);
+  std::set<std::array<std::size_t, 3>> boundary;
+  for (const CellFace& face : connectivity.boundary)
+    boundary.insert({static_cast<std::size_t>(index(face.type)), static_cast<std::size_t>(face.cell),
+                     static_cast<std::size_t>(face.local_face)});
+
+  auto check = [&](CellType type, const std::vector<OuterCell>& cells) {
+    const std::size_t count = mesh.cell_count(type);
+    std::set<std::pair<std::size_t, int>> seen;
+    for (const OuterCell& outer : cells) {
+      const std::string cell_name = std::string(name(type)) + " " + std::to_string(outer.cell);
+      if (outer.cell >= count)
+        throw Error("interface: outer " + cell_name + " does not exist (the mesh has " +
+                    std::to_string(count) + " " + std::string(name(type)) + "s)");
+      const CellDescriptor& cell = descriptor(type);
+      if (outer.outer_face < 0 || outer.outer_face >= cell.face_count)
+        throw Error("interface: outer face " + std::to_string(outer.outer_face) + " of " + cell_name +
+                    " is not a face number (0.." + std::to_string(cell.face_count - 1) + ")");
+      if (!seen.emplace(outer.cell, outer.outer_face).second)
+        throw Error("interface: face " + std::to_string(outer.outer_face) + " of " + cell_name +
+                    " is listed twice in the outer layer");
+      if (!boundary.count({static_cast<std::size_t>(index(type)), outer.cell,
+                           static_cast<std::size_t>(outer.outer_face)}))
+        throw Error("interface: outer face " + std::to_string(outer.outer_face) + " of " + cell_name +
+                    " is shared with another cell, so it cannot face the far field");
+    }
+  };
+  check(CellType::hexahedron, layer.hexahedra);
+  check(CellType::prism, layer.prisms);
+}
+
+// Position (0 or 1) of the first node of the chosen diagonal q[s]–q[s+2].
+int diagonal_start(const std::vector<Vector3>& points, const Index* quad, HullDiagonal rule) {
+  const int smallest_position = static_cast<int>(std::min_element(quad, quad + 4) - quad) % 2;
+  if (rule == HullDiagonal::smallest_node) return smallest_position;
+  auto at = [&](int corner) -> const Vector3& { return points[static_cast<std::size_t>(quad[corner])]; };
+  const double first = (at(2) - at(0)).squaredNorm();
+  const double second = (at(3) - at(1)).squaredNorm();
+  // Equal lengths up to rounding (a rectangle) fall back to the node rule so the
+  // choice never depends on the last bit of a coordinate.
+  if (std::abs(first - second) <= 1e-12 * std::max(first, second)) return smallest_position;
+  return first < second ? 0 : 1;
+}
+
+}  // namespace
+
+namespace {
+
+// Splits one cell about its centre: a pyramid on every quad face that stays, two
+// tetrahedra on every outer quad, one tetrahedron on every triangle face. Outer faces
+// join the hull.
+void split_cell(CellType type, std::size_t cell, const Index* nodes, unsigned outer_faces, int region,
+                const InterfaceOptions& options, InterfaceResult& result) {
+  MixedMesh& out = result.mesh;
+  const CellDescriptor& shape = descriptor(type);
+  const Index centre = static_cast<Index>(out.points.size());
+  out.points.push_back(cell_centre(type, out.points, nodes));
+  result.centres.push_back(centre);
+  auto add_tetrahedron = [&](const std::array<Index, 3>& triangle, const std::string& where) {
+    // Tetrahedron face 0-2-1 is outward, so (a, c, b, centre) keeps a-b-c outward.
+    const Index tetrahedron[4] = {triangle[0], triangle[2], triangle[1], centre};
+    const auto& p = out.points;
+    if (tetrahedron_volume6(
+            p[static_cast<std::size_t>(tetrahedron[0])], p[static_cast<std::size_t>(tetrahedron[1])],
+            p[static_cast<std::size_t>(tetrahedron[2])], p[static_cast<std::size_t>(tetrahedron[3])]) <= 0.0)
+      throw Error("interface: splitting " + where + " about its centre gives an inverted tetrahedron");
+    out.add_cell(CellType::tetrahedron, tetrahedron, region);
+    ++result.tetrahedra;
+  };
+  for (int face = 0; face < shape.face_count; ++face) {
+    const LocalFace& local = shape.faces[static_cast<std::size_t>(face)];
+    Index corners[4] = {-1, -1, -1, -1};  // outward from the cell
+    for (int corner = 0; corner < local.node_count; ++corner)
+      corners[corner] = nodes[local.nodes[static_cast<std::size_t>(corner)]];
+    const bool outer = (outer_faces >> face) & 1u;
+    const std::string where = std::string(name(type)) + " " + std::to_string(cell) + " face " +
+                              std::to_string(face) + " near " +
+                              point_text(out.points[static_cast<std::size_t>(centre)]);
+    if (local.node_count == 3) {
+      const std::array<Index, 3> triangle = {corners[0], corners[1], corners[2]};
+      add_tetrahedron(triangle, where);
+      if (outer) result.hull.push_back(triangle);
+      continue;
+    }
+    if (!outer) {
+      // The pyramid base 0-1-2-3 turns counter-clockwise seen from the apex, i.e.
+      // opposite to the cell's outward winding.
+      const Index pyramid[5] = {corners[0], corners[3], corners[2], corners[1], centre};
+      if (!cell_shape(CellType::pyramid, out.points, pyramid).valid())
+        throw Error("interface: splitting " + where + " about its centre gives an inverted pyramid");
+      out.add_cell(CellType::pyramid, pyramid, region);
+      ++result.pyramids;
+      continue;
+    }
+    const int start = diagonal_start(out.points, corners, options.diagonal);
+    for (const std::array<Index, 3>& triangle :
+         {std::array<Index, 3>{corners[start], corners[start + 1], corners[start + 2]},
+          std::array<Index, 3>{corners[start], corners[start + 2], corners[(start + 3) % 4]}}) {
+      add_tetrahedron(triangle, where);
+      result.hull.push_back(triangle);
+    }
+  }
+}
+
+// Keeps the cell and caps every outer quad with a pyramid outside it, apex above the
+// quad's centre at cap_height × its shortest edge; the caps' sides join the hull.
+void cap_cell(CellType type, std::size_t cell, const Index* nodes, unsigned outer_faces, int region,
+              const InterfaceOptions& options, InterfaceResult& result) {
+  MixedMesh& out = result.mesh;
+  const CellDescriptor& shape = descriptor(type);
+  for (int face = 0; face < shape.face_count; ++face) {
+    if (!((outer_faces >> face) & 1u)) continue;
+    const LocalFace& local = shape.faces[static_cast<std::size_t>(face)];
+    Index corners[4] = {-1, -1, -1, -1};  // outward from the cell
+    for (int corner = 0; corner < local.node_count; ++corner)
+      corners[corner] = nodes[local.nodes[static_cast<std::size_t>(corner)]];
+    if (local.node_count == 3) {
+      result.hull.push_back({corners[0], corners[1], corners[2]});
+      continue;
+    }
+    Vector3 middle = Vector3::Zero();
+    double shortest = std::numeric_limits<double>::infinity();
+    for (int corner = 0; corner < 4; ++corner) {
+      const Vector3& here = out.points[static_cast<std::size_t>(corners[corner])];
+      middle += 0.25 * here;
+      shortest =
+          std::min(shortest, (out.points[static_cast<std::size_t>(corners[(corner + 1) % 4])] - here).norm());
+    }
+    const Vector3 normal = face_area_vector(out.points, corners, 4).normalized();
+    const Index apex = static_cast<Index>(out.points.size());
+    out.points.push_back(middle + options.cap_height * shortest * normal);
+    // Seen from the apex (outside) the outward winding is counter-clockwise already.
+    const Index pyramid[5] = {corners[0], corners[1], corners[2], corners[3], apex};
+    if (!cell_shape(CellType::pyramid, out.points, pyramid).valid())
+      throw Error("interface: " + std::string(name(type)) + " " + std::to_string(cell) +
+                  " can neither be split about its centre nor capped on face " + std::to_string(face) +
+                  " near " + point_text(middle));
+    out.add_cell(CellType::pyramid, pyramid, region);
+    ++result.pyramids;
+    for (int corner = 0; corner < 4; ++corner)
+      result.hull.push_back({corners[corner], corners[(corner + 1) % 4], apex});
+  }
+  ++result.capped_cells;
+}
+
+}  // namespace
+
+InterfaceResult split_interface(const MixedMesh& mesh, const OuterLayer& layer,
+                                const InterfaceOptions& options) {
+  validate(mesh, layer);
+
+  InterfaceResult result;
+  MixedMesh& out = result.mesh;
+  out.points = mesh.points;
+  out.marker_names = mesh.marker_names;
+  for (CellType type : {CellType::tetrahedron, CellType::pyramid}) out.block(type) = mesh.block(type);
+
+  // Outer faces per cell as bit masks; cells in order of their first listing.
+  std::set<FaceKey> hull_faces;  // to drop the old tags of the outer faces
+  for (const auto& [type, cells] :
+       {std::pair{CellType::hexahedron, &layer.hexahedra}, std::pair{CellType::prism, &layer.prisms}}) {
+    std::vector<unsigned> outer_faces(mesh.cell_count(type), 0u);
+    std::vector<std::size_t> order;
+    for (const OuterCell& outer : *cells) {
+      if (outer_faces[outer.cell] == 0u) order.push_back(outer.cell);
+      outer_faces[outer.cell] |= 1u << outer.outer_face;
+      const LocalFace& local = descriptor(type).faces[static_cast<std::size_t>(outer.outer_face)];
+      Index corners[4] = {-1, -1, -1, -1};
+      for (int corner = 0; corner < local.node_count; ++corner)
+        corners[corner] = mesh.cell(type, outer.cell)[local.nodes[static_cast<std::size_t>(corner)]];
+      hull_faces.insert(sorted_key(corners, local.node_count));
+    }
+    // A cell is split when a quad faces the far field; a prism whose outer faces are
+    // triangles passes through and adds them to the hull as they are.
+    std::vector<char> split(outer_faces.size(), 0);
+    for (std::size_t cell : order) {
+      bool quad = false;
+      for (int face = 0; face < descriptor(type).face_count; ++face)
+        quad = quad || (((outer_faces[cell] >> face) & 1u) &&
+                        descriptor(type).faces[static_cast<std::size_t>(face)].node_count == 4);
+      split[cell] = quad;
+    }
+    const CellBlock& block = mesh.block(type);
+    for (std::size_t cell = 0; cell < outer_faces.size(); ++cell)
+      if (!split[cell]) out.add_cell(type, mesh.cell(type, cell), block.regions[cell]);
+    for (std::size_t cell : order) {
+      if (split[cell]) {
+        // Try the centre split; where a piece would be inverted (thin cells with a warped
+        // face), undo it and, if allowed, keep the cell and cap its outer quads instead.
+        const std::size_t points = out.points.size(), hull = result.hull.size(),
+                          centres = result.centres.size();
+        const std::size_t pyramids = result.pyramids, tetrahedra = result.tetrahedra;
+        const std::array<std::size_t, 2> blocks = {out.block(CellType::tetrahedron).regions.size(),
+                                                   out.block(CellType::pyramid).regions.size()};
+        try {
+          split_cell(type, cell, mesh.cell(type, cell), outer_faces[cell], block.regions[cell], options,
+                     result);
+        } catch (const Error&) {
+          if (!options.cap_unsplittable_cells) throw;
+          out.points.resize(points);
+          result.hull.resize(hull);
+          result.centres.resize(centres);
+          result.pyramids = pyramids;
+          result.tetrahedra = tetrahedra;
+          for (auto [piece, count] :
+               {std::pair{CellType::tetrahedron, blocks[0]}, std::pair{CellType::pyramid, blocks[1]}}) {
+            out.block(piece).regions.resize(count);
+            out.block(piece).nodes.resize(count * static_cast<std::size_t>(node_count(piece)));
+          }
+          out.add_cell(type, mesh.cell(type, cell), block.regions[cell]);
+          cap_cell(type, cell, mesh.cell(type, cell), outer_faces[cell], block.regions[cell], options,
+                   result);
+        }
+        continue;
+      }
+      for (int face = 0; face < descriptor(type).face_count; ++face) {
+        if (!((outer_faces[cell] >> face) & 1u)) continue;
+        const LocalFace& local = descriptor(type).faces[static_cast<std::size_t>(face)];
+        const Index* nodes = mesh.cell(type, cell);
+        result.hull.push_back({nodes[local.nodes[0]], nodes[local.nodes[1]], nodes[local.nodes[2]]});
+      }
+    }
+  }
+
+  for (FaceType type : all_face_types) {
+    const int count = node_count(type);
+    for (std::size_t face = 0; face < mesh.face_count(type); ++face) {
+      const Index* nodes = mesh.face(type, face);
+      if (hull_faces.count(sorted_key(nodes, count))) continue;
+      out.add_face(type, nodes, mesh.faces(type).markers[face]);
+    }
+  }
+  const int hull_marker = out.marker(options.hull_marker);
+  for (const auto& triangle : result.hull) out.add_face(FaceType::triangle, triangle.data(), hull_marker);
+  return result;
+}
+
+std::vector<std::array<Index, 2>> hull_free_edges(const std::vector<std::array<Index, 3>>& hull) {
+  // Undirected edge → (use count, the directed edge as first met).
+  std::map<std::pair<Index, Index>, std::pair<int, std::array<Index, 2>>> edges;
+  for (const auto& triangle : hull) {
+    for (int corner = 0; corner < 3; ++corner) {
+      const Index from = triangle[static_cast<std::size_t>(corner)];
+      const Index to = triangle[static_cast<std::size_t>((corner + 1) % 3)];
+      auto& entry = edges[{std::min(from, to), std::max(from, to)}];
+      if (entry.first++ == 0) entry.second = {from, to};
+    }
+  }
+  std::vector<std::array<Index, 2>> free_edges;
+  for (const auto& [key, entry] : edges)
+    if (entry.first == 1) free_edges.push_back(entry.second);
+  return free_edges;
+}
+
+}  // namespace mixmesh

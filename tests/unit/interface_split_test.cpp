@@ -1,0 +1,260 @@
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <map>
+
+#include "mixmesh/core/error.hpp"
+#include "mixmesh/interface/interface_split.hpp"
+#include "reference_cells.hpp"
+
+using namespace mixmesh;
+
+namespace {
+
+double total_volume(const MixedMesh& mesh) {
+  double volume = 0.0;
+  for (CellType type : all_cell_types)
+    for (std::size_t cell = 0; cell < mesh.cell_count(type); ++cell)
+      volume += signed_volume(type, mesh.points, mesh.cell(type, cell));
+  return volume;
+}
+
+int invalid_cells(const MixedMesh& mesh) {
+  int invalid = 0;
+  for (CellType type : all_cell_types)
+    for (std::size_t cell = 0; cell < mesh.cell_count(type); ++cell)
+      invalid += !cell_shape(type, mesh.points, mesh.cell(type, cell)).valid();
+  return invalid;
+}
+
+// An nx × ny × nz block of hexahedra on the unit grid, mapped by `map`; boundary
+// tagged wall (z = 0) / farfield. Hexahedron (i, j, k) is number i + nx (j + ny k).
+template <typename Map>
+MixedMesh hexahedron_block(int nx, int ny, int nz, Map map) {
+  MixedMesh mesh;
+  auto node = [&](int i, int j, int k) { return static_cast<Index>(i + (nx + 1) * (j + (ny + 1) * k)); };
+  for (int k = 0; k <= nz; ++k)
+    for (int j = 0; j <= ny; ++j)
+      for (int i = 0; i <= nx; ++i) mesh.points.push_back(map(Vector3(i, j, k)));
+  for (int k = 0; k < nz; ++k)
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i) {
+        const Index hexahedron[8] = {
+            node(i, j, k),     node(i + 1, j, k),     node(i + 1, j + 1, k),     node(i, j + 1, k),
+            node(i, j, k + 1), node(i + 1, j, k + 1), node(i + 1, j + 1, k + 1), node(i, j + 1, k + 1)};
+        mesh.add_cell(CellType::hexahedron, hexahedron, 7);
+      }
+  reference::tag_boundary(mesh);
+  return mesh;
+}
+
+OuterLayer top_layer(int nx, int ny, int nz) {
+  OuterLayer layer;
+  for (int cell = nx * ny * (nz - 1); cell < nx * ny * nz; ++cell)
+    layer.hexahedra.push_back({static_cast<std::size_t>(cell), 1});
+  return layer;
+}
+
+Vector3 shear(const Vector3& point) {
+  return Vector3(point.x() + 0.7 * point.z() + 0.2 * point.y(), 0.5 * point.y() + 0.3 * point.z(),
+                 0.05 * point.z());
+}
+
+void expect_sound_split(const MixedMesh& input, const InterfaceResult& result) {
+  EXPECT_NEAR(total_volume(result.mesh), total_volume(input), 1e-12 * total_volume(input));
+  EXPECT_EQ(invalid_cells(result.mesh), 0);
+  const FaceConnectivity faces = match_faces(result.mesh);
+  EXPECT_TRUE(faces.conforming());
+  EXPECT_TRUE(faces.untagged_boundary.empty());
+  EXPECT_TRUE(faces.stray_boundary_faces.empty());
+  EXPECT_EQ(result.mesh.face_count(), faces.boundary.size());
+}
+
+}  // namespace
+
+TEST(InterfaceSplit, OneHexahedronBecomesFivePyramidsAndTwoTetrahedra) {
+  const MixedMesh input = hexahedron_block(1, 1, 1, [](const Vector3& p) { return p; });
+  const InterfaceResult result = split_interface(input, top_layer(1, 1, 1));
+  EXPECT_EQ(result.mesh.cell_count(CellType::hexahedron), 0u);
+  EXPECT_EQ(result.mesh.cell_count(CellType::pyramid), 5u);
+  EXPECT_EQ(result.mesh.cell_count(CellType::tetrahedron), 2u);
+  ASSERT_EQ(result.centres.size(), 1u);
+  EXPECT_TRUE(
+      result.mesh.points[static_cast<std::size_t>(result.centres[0])].isApprox(Vector3(0.5, 0.5, 0.5)));
+  ASSERT_EQ(result.hull.size(), 2u);
+  for (const auto& triangle : result.hull) {
+    const Vector3 normal = face_area_vector(result.mesh.points, triangle.data(), 3);
+    EXPECT_NEAR(normal.dot(Vector3::UnitZ()), 0.5, 1e-15) << "hull triangles point away from the layer";
+  }
+  EXPECT_EQ(result.mesh.face_count(FaceType::quad), 5u);
+  const int hull_marker = result.mesh.find_marker("interface");
+  ASSERT_GE(hull_marker, 0);
+  EXPECT_EQ(std::count(result.mesh.faces(FaceType::triangle).markers.begin(),
+                       result.mesh.faces(FaceType::triangle).markers.end(), hull_marker),
+            2);
+  expect_sound_split(input, result);
+}
+
+TEST(InterfaceSplit, ShearedHexahedronSplitsIntoValidPiecesOfTheSameVolume) {
+  const MixedMesh input = hexahedron_block(1, 1, 1, shear);
+  ASSERT_EQ(invalid_cells(input), 0);
+  expect_sound_split(input, split_interface(input, top_layer(1, 1, 1)));
+}
+
+TEST(InterfaceSplit, BlockOfThreeByThreeByTwoStaysConformingWithTheInnerLayer) {
+  for (auto diagonal : {HullDiagonal::shorter, HullDiagonal::smallest_node}) {
+    const MixedMesh input = hexahedron_block(3, 3, 2, shear);
+    const InterfaceResult result = split_interface(input, top_layer(3, 3, 2), {diagonal, "interface"});
+    EXPECT_EQ(result.mesh.cell_count(CellType::hexahedron), 9u) << "the inner layer keeps its hexahedra";
+    EXPECT_EQ(result.mesh.cell_count(CellType::pyramid), 45u);
+    EXPECT_EQ(result.mesh.cell_count(CellType::tetrahedron), 18u);
+    EXPECT_EQ(result.mesh.points.size(), input.points.size() + 9);
+    for (int region : result.mesh.block(CellType::pyramid).regions) EXPECT_EQ(region, 7);
+    ASSERT_EQ(result.hull.size(), 18u);
+    // The hull is a disc: its free edges are the 12 edges of the block's top rim.
+    EXPECT_EQ(hull_free_edges(result.hull).size(), 12u);
+    // Side quads of the split layer keep their farfield tag: 4 sides × 3 (inner) + 4 × 3 (outer).
+    EXPECT_EQ(result.mesh.face_count(FaceType::quad), 24u + 9u);
+    expect_sound_split(input, result);
+  }
+}
+
+TEST(InterfaceSplit, DiagonalRulesAreDeterministic) {
+  // A rhombus top whose long diagonal a-c runs through the smallest top node a.
+  MixedMesh input = hexahedron_block(1, 1, 1, [](const Vector3& p) { return p; });
+  const Index* top = input.cell(CellType::hexahedron, 0) + 4;
+  const Index a = top[0], b = top[1], c = top[2], d = top[3];
+  ASSERT_EQ(*std::min_element(top, top + 4), a);
+  input.points[static_cast<std::size_t>(a)] += Vector3(-0.3, -0.3, 0);
+  input.points[static_cast<std::size_t>(c)] += Vector3(0.3, 0.3, 0);
+  auto has_edge = [](const InterfaceResult& result, Index a, Index b) {
+    for (const auto& triangle : result.hull) {
+      const bool with_a = std::find(triangle.begin(), triangle.end(), a) != triangle.end();
+      const bool with_b = std::find(triangle.begin(), triangle.end(), b) != triangle.end();
+      if (with_a && with_b) return true;
+    }
+    return false;
+  };
+  const InterfaceResult by_length =
+      split_interface(input, top_layer(1, 1, 1), {HullDiagonal::shorter, "interface"});
+  EXPECT_TRUE(has_edge(by_length, b, d));
+  EXPECT_FALSE(has_edge(by_length, a, c));
+  const InterfaceResult by_node =
+      split_interface(input, top_layer(1, 1, 1), {HullDiagonal::smallest_node, "interface"});
+  EXPECT_TRUE(has_edge(by_node, a, c));
+  EXPECT_FALSE(has_edge(by_node, b, d));
+  expect_sound_split(input, by_length);
+}
+
+TEST(InterfaceSplit, PrismTopsPassThroughNextToSplitHexahedra) {
+  // A hexahedron and a prism sharing the quad x = 1.
+  MixedMesh input = hexahedron_block(1, 1, 1, [](const Vector3& p) { return p; });
+  input.boundary = {};
+  input.marker_names.clear();
+  input.points.push_back({2, 0, 0});
+  input.points.push_back({2, 0, 1});
+  const Index prism[6] = {1, 8, 2, 5, 9, 6};
+  input.add_cell(CellType::prism, prism);
+  reference::orient_positively(input);
+  reference::tag_boundary(input);
+  ASSERT_EQ(invalid_cells(input), 0);
+  int top_face = -1;  // the prism face at z = 1
+  for (int face = 0; face < 2; ++face) {
+    bool on_top = true;
+    for (int corner = 0; corner < 3; ++corner)
+      on_top = on_top && input.points[static_cast<std::size_t>(input.cell(
+                                          CellType::prism, 0)[prism_descriptor.faces[face].nodes[corner]])]
+                                 .z() == 1.0;
+    if (on_top) top_face = face;
+  }
+  ASSERT_GE(top_face, 0);
+  OuterLayer layer = top_layer(1, 1, 1);
+  layer.prisms.push_back({0, top_face});
+  const InterfaceResult result = split_interface(input, layer);
+  EXPECT_EQ(result.hull.size(), 3u);
+  EXPECT_EQ(result.mesh.cell_count(CellType::prism), 1u);
+  expect_sound_split(input, result);
+}
+
+TEST(InterfaceSplit, BadListingsAreRejectedWithTheCellNamed) {
+  const MixedMesh input = hexahedron_block(2, 1, 2, [](const Vector3& p) { return p; });
+  auto message = [&](const OuterLayer& layer) {
+    try {
+      split_interface(input, layer);
+    } catch (const Error& error) {
+      return std::string(error.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(message({{{9, 1}}, {}}).find("hexahedron 9 does not exist"), std::string::npos);
+  EXPECT_NE(message({{{2, 6}}, {}}).find("not a face number"), std::string::npos);
+  EXPECT_NE(message({{{2, 1}, {2, 1}}, {}}).find("listed twice"), std::string::npos);
+  // The top of the lower layer is shared with the upper layer.
+  EXPECT_NE(message({{{0, 1}}, {}}).find("hexahedron 0 is shared"), std::string::npos);
+  EXPECT_NE(message({{}, {{0, 1}}}).find("prism 0 does not exist"), std::string::npos);
+}
+
+TEST(InterfaceSplit, FreeEdgesOfAClosedHullAreNone) {
+  const std::vector<std::array<Index, 3>> tetrahedron_surface = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}};
+  EXPECT_TRUE(hull_free_edges(tetrahedron_surface).empty());
+  const auto open = hull_free_edges({{0, 1, 2}});
+  EXPECT_EQ(open.size(), 3u);
+}
+
+TEST(InterfaceSplit, SteppedColumnsSplitEveryCellWithAnExposedQuad) {
+  // Two columns of three hexahedra; the top of the second is removed, so the top
+  // hexahedron of the first faces the far field with its top and its +x side.
+  MixedMesh input = hexahedron_block(2, 1, 3, shear);
+  auto& block = input.block(CellType::hexahedron);
+  block.nodes.erase(block.nodes.begin() + 5 * 8, block.nodes.begin() + 6 * 8);
+  block.regions.erase(block.regions.begin() + 5);
+  input.boundary = {};
+  reference::tag_boundary(input);
+  OuterLayer layer;
+  layer.hexahedra = {{4, 1}, {4, 3}, {3, 1}};
+  const InterfaceResult result = split_interface(input, layer);
+  EXPECT_EQ(result.centres.size(), 2u);
+  EXPECT_EQ(result.mesh.cell_count(CellType::pyramid), 4u + 5u);
+  EXPECT_EQ(result.hull.size(), 6u);
+  expect_sound_split(input, result);
+}
+
+TEST(InterfaceSplit, PrismWithAnExposedSideIsSplitAboutItsCentre) {
+  MixedMesh input = reference::single_cell(CellType::prism);
+  reference::tag_boundary(input);
+  const InterfaceResult result = split_interface(input, {{}, {{0, 1}, {0, 2}}});
+  EXPECT_EQ(result.mesh.cell_count(CellType::prism), 0u);
+  EXPECT_EQ(result.mesh.cell_count(CellType::pyramid), 2u);
+  EXPECT_EQ(result.mesh.cell_count(CellType::tetrahedron), 2u + 2u);
+  EXPECT_EQ(result.hull.size(), 3u);
+  expect_sound_split(input, result);
+}
+
+TEST(InterfaceSplit, ThinWarpedCellThatCannotBeSplitIsCappedInstead) {
+  // Two stacked hexahedra 0.02 thick whose shared quad is a saddle of ±0.012: a
+  // pyramid on it with its apex at the lower cell's centre (0.01 away) is inverted.
+  MixedMesh input =
+      hexahedron_block(1, 1, 2, [](const Vector3& p) { return Vector3(p.x(), p.y(), 0.02 * p.z()); });
+  for (Index node = 4; node < 8; ++node) {
+    Vector3& point = input.points[static_cast<std::size_t>(node)];
+    point.z() += point.x() == point.y() ? 0.012 : -0.012;
+  }
+  ASSERT_EQ(invalid_cells(input), 0);
+  const OuterLayer side = {{{0, 2}}, {}};  // the lower cell's y = 0 side faces the far field
+  InterfaceOptions strict;
+  strict.cap_unsplittable_cells = false;
+  EXPECT_THROW(split_interface(input, side, strict), Error);
+
+  const InterfaceResult result = split_interface(input, side);
+  EXPECT_EQ(result.capped_cells, 1u);
+  EXPECT_EQ(result.mesh.cell_count(CellType::hexahedron), 2u);
+  EXPECT_EQ(result.mesh.cell_count(CellType::pyramid), 1u);
+  EXPECT_EQ(result.hull.size(), 4u);
+  for (const auto& triangle : result.hull)
+    EXPECT_LT(face_area_vector(result.mesh.points, triangle.data(), 3).y(), 0.0) << "caps point away (−y)";
+  EXPECT_EQ(invalid_cells(result.mesh), 0);
+  const FaceConnectivity faces = match_faces(result.mesh);
+  EXPECT_TRUE(faces.conforming());
+  EXPECT_TRUE(faces.untagged_boundary.empty());
+  EXPECT_TRUE(faces.stray_boundary_faces.empty());
+}
