@@ -7,6 +7,7 @@
 #include <string>
 
 #include "farfield/farfield_parts.hpp"
+#include "farfield/isolated_call.hpp"
 #include "mixmesh/core/error.hpp"
 
 namespace mixmesh::farfield_parts {
@@ -86,17 +87,12 @@ std::string intersection_location(const TetgenInput& input) {
   return text.str();
 }
 
-}  // namespace
-
-TetgenOutput run_tetgen(const TetgenInput& input) {
+// The tetrahedralisation itself; throws mixmesh::Error for the failures TetGen
+// reports (its exit codes of tetgenmesh::terminatetetgen).
+TetgenOutput tetrahedralise(const TetgenInput& input) {
   tetgenio in, out;
   const bool with_sizes = input.quality && !input.sizes.empty();
   fill(in, input, with_sizes);
-  // TetGen 1.5 frees its memory twice when it stops on an error inside the library, so
-  // a bad boundary must be caught before the real run: -d only reports intersections.
-  const std::string intersections = intersection_location(input);
-  if (!intersections.empty()) throw Error("farfield: the boundary intersects itself" + intersections);
-
   // p: PLC; Y: no Steiner points on the boundary; q: radius-edge bound; m: sizes;
   // J: keep every input point so indices stay; z: zero-based; Q: quiet.
   std::ostringstream switches;
@@ -107,17 +103,11 @@ TetgenOutput run_tetgen(const TetgenInput& input) {
     run(switches.str(), in, out);
   } catch (int code) {
     switch (code) {
-      case 1:
-        throw Error("farfield: TetGen ran out of memory");
-      case 3:
-        throw Error("farfield: the boundary intersects itself" + intersection_location(input));
-      case 4:
-        throw Error("farfield: the boundary has a feature too small for TetGen's tolerance");
-      case 5:
-        throw Error("farfield: two boundary triangles are too close" + intersection_location(input));
-      default:
-        throw Error("farfield: TetGen failed (code " + std::to_string(code) + ")" +
-                    intersection_location(input));
+      case 1: throw Error("farfield: TetGen ran out of memory");
+      case 3: throw Error("farfield: the boundary intersects itself");
+      case 4: throw Error("farfield: the boundary has a feature too small for TetGen's tolerance");
+      case 5: throw Error("farfield: two boundary triangles are too close");
+      default: throw Error("farfield: TetGen failed (code " + std::to_string(code) + ")");
     }
   }
 
@@ -138,6 +128,46 @@ TetgenOutput run_tetgen(const TetgenInput& input) {
       result.tetrahedra[tetrahedron][static_cast<std::size_t>(corner)] =
           out.tetrahedronlist[4 * tetrahedron + static_cast<std::size_t>(corner)];
   return result;
+}
+
+}  // namespace
+
+// The child's result through the pipe (Eigen vectors as plain doubles).
+void send(isolated_detail::Channel& channel, const TetgenOutput& output) {
+  std::vector<double> coordinates;
+  coordinates.reserve(3 * output.points.size());
+  for (const Vector3& point : output.points) coordinates.insert(coordinates.end(), {point.x(), point.y(), point.z()});
+  channel.write_vector(coordinates);
+  channel.write_vector(output.tetrahedra);
+}
+
+bool receive(isolated_detail::Channel& channel, TetgenOutput& output) {
+  std::vector<double> coordinates;
+  if (!channel.read_vector(coordinates) || !channel.read_vector(output.tetrahedra)) return false;
+  output.points.resize(coordinates.size() / 3);
+  for (std::size_t point = 0; point < output.points.size(); ++point)
+    output.points[point] = Vector3(coordinates[3 * point], coordinates[3 * point + 1], coordinates[3 * point + 2]);
+  return true;
+}
+
+TetgenOutput run_tetgen(const TetgenInput& input) {
+  // TetGen 1.5 frees memory twice when it stops on an error inside the library, so a
+  // bad boundary would take the whole program down: TetGen runs in a child process
+  // and only its result (or its error) comes back.
+  try {
+    return run_isolated<TetgenOutput>("TetGen", [&] { return tetrahedralise(input); });
+  } catch (const Error& error) {
+    // Where TetGen's own test (-d) finds intersecting boundary triangles, that is
+    // the cause to report, whatever the failure looked like.
+    std::string intersections;
+    try {
+      intersections =
+          run_isolated<std::string>("TetGen's intersection test", [&] { return intersection_location(input); });
+    } catch (const Error&) {
+    }
+    if (!intersections.empty()) throw Error("farfield: the boundary intersects itself" + intersections);
+    throw;
+  }
 }
 
 }  // namespace mixmesh::farfield_parts
