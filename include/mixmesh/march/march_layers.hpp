@@ -1,0 +1,113 @@
+// Marching of the boundary layer: hexahedra from the quads and prisms from the
+// triangles of a SurfaceMesh, layer by layer away from the wall (Wild §II.A–B).
+//
+//   march_layers(surface, options, log) -> BoundaryLayer
+//
+// Each surface node marches along one line per side: wall nodes have one line, the
+// nodes of wake patches (floating sheets, C-type) have one line above and one below
+// the sheet; wall faces that touch a wake node (the trailing edge) take the line on
+// their side of the sheet, so the wing's layers and the wake's layers join with no gap.
+// Every cell that is emitted has passed cell_shape (positive volume, subtetrahedra
+// and corner Jacobians) and a self-intersection test of the new layer front; where a
+// layer cannot be added the column of that face stops (see BoundaryLayer).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "mixmesh/core/log.hpp"
+#include "mixmesh/march/spacing.hpp"
+#include "mixmesh/mesh/mixed_mesh.hpp"
+#include "mixmesh/surface/surface_mesh.hpp"
+
+namespace mixmesh {
+
+enum class MarchMethod {
+  smoothed,  // parabolic marching with the face-weighted Laplace corrector
+  normal     // baseline: plain extrusion along area-averaged normals, no smoothing
+};
+
+struct MarchOptions {
+  SpacingOptions spacing;
+  MarchMethod method = MarchMethod::smoothed;
+  // Jacobi sweeps of the implicit corrector per layer (each sweep is parallel).
+  int sweeps = 12;
+  // Control functions: the first `orthogonal_layers` layers march exactly along the
+  // wall-orthogonal direction; over the next `release_layers` layers the smoothed
+  // direction takes over (smoothstep blend).
+  int orthogonal_layers = 3;
+  int release_layers = 20;
+  // Predictor: weight of the previous marching direction against the new layer
+  // normal (keeps marching lines straight where the normals turn).
+  double direction_memory = 0.5;
+  // Passes of direction averaging with the neighbouring lines per released layer.
+  int direction_smoothing_passes = 10;
+  // Safety: halve the step of the nodes of a failed cell this many times before the
+  // column stops.
+  int step_reductions = 3;
+  bool check_self_intersection = true;
+  // Marker names of the boundary faces the march creates (wall faces keep their
+  // patch names).
+  std::string symmetry_marker = "symmetry";
+  std::string outer_hull_marker = "outer_hull";
+  std::string hull_side_marker = "hull_side";
+};
+
+// Nodes whose growth stopped early, summarised for the report.
+struct StoppedRegion {
+  int layer = 0;              // layer the columns stopped at
+  int faces = 0;              // surface faces whose column stopped there
+  Vector3 location{0, 0, 0};  // centre of those faces on the wall
+};
+
+struct MarchReport {
+  int layers_requested = 0;
+  int layers_completed = 0;  // layers every column reached
+  double first_spacing = 0.0;
+  double total_thickness = 0.0;        // sum of the steps of the full layers
+  int reduced_steps = 0;               // node steps shortened to keep a cell valid
+  int stopped_faces = 0;               // surface faces whose column stopped early
+  int stopped_nodes = 0;               // surface nodes on such faces
+  std::vector<StoppedRegion> stopped;  // grouped by layer
+  double seconds = 0.0;
+};
+
+// The marched layers.
+//
+//   mesh              hexahedra (from quads) and prisms (from triangles), VTK order;
+//                     points 0 .. surface.points.size()-1 are the surface points;
+//                     boundary faces: wall faces (marker = patch name), side faces in
+//                     the symmetry plane, the outer hull (top of every column and the
+//                     sides exposed where a neighbouring column stopped lower) and
+//                     the sides along free edges of the front (wake end, wake tip)
+//   column_points     per marching line: its point per layer (0 = the wall point)
+//   column_node       per marching line: its surface node
+//   column_side       per marching line: 0 wall, +1 above a wake sheet, -1 below
+//   face_columns      per front face: its marching lines (3 or 4, flow-side normal)
+//   face_layers       per front face: number of cells in its column
+//   face_patch        per front face: its patch (index into region_names)
+//   face_wall         per front face: 1 on a wall patch, 0 on a wake sheet
+//   hexahedron_face / prism_face, hexahedron_layer / prism_layer
+//                     per cell: its front face and layer (0 = on the wall); a cell
+//                     is outermost when its layer + 1 == face_layers[face]
+//   region_names      region tag of every cell = index of its patch here
+struct BoundaryLayer {
+  MixedMesh mesh;
+  std::vector<std::vector<Index>> column_points;
+  std::vector<Index> column_node;
+  std::vector<int> column_side;
+  std::vector<std::vector<int>> face_columns;
+  std::vector<int> face_layers;
+  std::vector<int> face_patch;
+  std::vector<char> face_wall;
+  std::vector<int> hexahedron_face, hexahedron_layer;
+  std::vector<int> prism_face, prism_layer;
+  std::vector<std::string> region_names;
+  MarchReport report;
+};
+
+// Throws mixmesh::Error for a surface that cannot be marched: indices out of range,
+// degenerate faces, an edge shared by more than two faces on one side, bad options.
+BoundaryLayer march_layers(const SurfaceMesh& surface, const MarchOptions& options, const Log* log = nullptr);
+
+}  // namespace mixmesh

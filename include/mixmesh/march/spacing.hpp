@@ -1,0 +1,34 @@
+// Wall-normal spacing of the marched layers: the first spacing (given, or from a
+// target y+) and the growth law that turns it into one step per layer.
+#pragma once
+
+#include <vector>
+
+namespace mixmesh {
+
+enum class GrowthLaw { geometric, tanh };
+
+struct SpacingOptions {
+  // First spacing in metres; when <= 0 it comes from target_y_plus, reynolds_number
+  // and reference_length (first_spacing_from_y_plus).
+  double first_spacing = -1.0;
+  double target_y_plus = 1.0;
+  double reynolds_number = 11.72e6;  // ONERA M6 test point, on the MAC
+  double reference_length = 0.646;   // ONERA M6 mean aerodynamic chord (m)
+  int layer_count = 32;
+  GrowthLaw growth_law = GrowthLaw::geometric;
+  double growth_rate = 1.25;      // geometric: step(k+1) = growth_rate * step(k)
+  double total_thickness = -1.0;  // tanh: required total thickness (m)
+};
+
+// Flat-plate estimate: Cf = 0.026 / Re^(1/7), u_tau = U sqrt(Cf / 2),
+// spacing = y+ nu / u_tau = y+ L / (Re sqrt(Cf / 2)) (U cancels with nu = U L / Re).
+// Throws mixmesh::Error for a non-positive y+, Reynolds number or length.
+double first_spacing_from_y_plus(double y_plus, double reynolds_number, double reference_length);
+
+// The step of every layer, layer_count entries, from the options. Throws
+// mixmesh::Error for inconsistent options (no layers, growth rate < 1, a tanh law
+// whose thickness cannot hold the first spacing).
+std::vector<double> layer_steps(const SpacingOptions& options);
+
+}  // namespace mixmesh

@@ -1,0 +1,313 @@
+#include "mixmesh/march/march_layers.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <sstream>
+
+#include "front.hpp"
+#include "layer_checks.hpp"
+#include "layer_mesh.hpp"
+#include "layer_solver.hpp"
+#include "mixmesh/core/error.hpp"
+
+namespace mixmesh {
+
+namespace {
+
+using march_detail::Front;
+using march_detail::FrontFace;
+
+Vector3 unit_or(const Vector3& vector, const Vector3& fallback) {
+  const double length = vector.norm();
+  return length > 0.0 ? Vector3(vector / length) : fallback;
+}
+
+// Column normals of the current layer from its active faces: angle-weighted corner
+// normals (the direction most nearly orthogonal to all faces around a node) or, for
+// the baseline, area-weighted face normals. Symmetry columns keep y = 0.
+// Wake faces count with weight `wake_weight` at lines that also start on a wall face
+// (the trailing edge), so the first grid line there is orthogonal to the wall.
+std::vector<Vector3> column_normals(const Front& front, const std::vector<Vector3>& positions,
+                                    const std::vector<char>& face_active, bool angle_weighted,
+                                    const std::vector<Vector3>& fallback, const std::vector<char>& on_wall,
+                                    double wake_weight) {
+  std::vector<Vector3> sum(positions.size(), Vector3::Zero());
+  for (std::size_t face = 0; face < front.faces.size(); ++face) {
+    if (!face_active[face]) continue;
+    const FrontFace& f = front.faces[face];
+    const int n = f.corner_count;
+    auto at = [&](int k) -> const Vector3& {
+      return positions[static_cast<std::size_t>(f.columns[static_cast<std::size_t>((k + n) % n)])];
+    };
+    Vector3 area = Vector3::Zero();
+    for (int k = 0; k < n; ++k) area += at(k).cross(at(k + 1));
+    for (int k = 0; k < n; ++k) {
+      const auto column = static_cast<std::size_t>(f.columns[static_cast<std::size_t>(k)]);
+      const double weight = !f.wall && on_wall[column] ? wake_weight : 1.0;
+      if (!angle_weighted) {
+        sum[column] += 0.5 * weight * area;
+        continue;
+      }
+      const Vector3 out = at(k + 1) - at(k);
+      const Vector3 in = at(k - 1) - at(k);
+      const Vector3 corner = out.cross(in);
+      const double angle = std::atan2(corner.norm(), out.dot(in));
+      sum[column] += weight * angle * unit_or(corner, Vector3::Zero());
+    }
+  }
+  std::vector<Vector3> normals(positions.size());
+  for (std::size_t c = 0; c < positions.size(); ++c) {
+    if (front.on_symmetry[c]) sum[c].y() = 0.0;
+    normals[c] = unit_or(sum[c], fallback[c]);
+  }
+  return normals;
+}
+
+// Weight of the smoothed direction against the orthogonal one (control functions
+// held near the wall, released over the outer layers).
+double release_weight(const MarchOptions& options, int layer) {
+  if (layer < options.orthogonal_layers) return 0.0;
+  const double t = std::clamp(static_cast<double>(layer - options.orthogonal_layers + 1) /
+                                  static_cast<double>(std::max(1, options.release_layers)),
+                              0.0, 1.0);
+  return t * t * (3.0 - 2.0 * t);
+}
+
+void check_options(const MarchOptions& options) {
+  if (options.sweeps < 0) throw Error("march: sweeps must be >= 0, got " + std::to_string(options.sweeps));
+  if (options.orthogonal_layers < 0 || options.release_layers < 0)
+    throw Error("march: orthogonal and release layer counts must be >= 0");
+  if (!(options.direction_memory >= 0.0 && options.direction_memory < 1.0))
+    throw Error("march: direction memory must lie in [0, 1)");
+  if (options.step_reductions < 0) throw Error("march: step reductions must be >= 0");
+  if (options.direction_smoothing_passes < 0) throw Error("march: direction smoothing passes must be >= 0");
+}
+
+std::string describe(const Vector3& x) {
+  std::ostringstream stream;
+  stream << "(" << x.x() << ", " << x.y() << ", " << x.z() << ")";
+  return stream.str();
+}
+
+}  // namespace
+
+BoundaryLayer march_layers(const SurfaceMesh& surface, const MarchOptions& options, const Log* log) {
+  const Stopwatch stopwatch;
+  check_options(options);
+  const std::vector<double> steps = layer_steps(options.spacing);
+  const Front front = march_detail::build_front(surface);
+  const std::size_t column_count = front.column_node.size();
+  const std::size_t face_count = front.faces.size();
+  const bool smoothed = options.method == MarchMethod::smoothed;
+
+  BoundaryLayer result;
+  result.mesh.points = surface.points;
+  result.region_names = front.patch_names;
+  result.column_node = front.column_node;
+  result.column_side = front.column_side;
+  result.column_points.resize(column_count);
+  std::vector<Vector3> current(column_count), previous(column_count);
+  for (std::size_t c = 0; c < column_count; ++c) {
+    result.column_points[c].push_back(front.column_node[c]);
+    current[c] = surface.points[static_cast<std::size_t>(front.column_node[c])];
+  }
+  for (const FrontFace& f : front.faces) {
+    result.face_columns.emplace_back(f.columns.begin(), f.columns.begin() + f.corner_count);
+    result.face_patch.push_back(f.patch);
+    result.face_wall.push_back(f.wall);
+  }
+  result.face_layers.assign(face_count, 0);
+  std::vector<char> face_active(face_count, 1);
+  std::vector<char> on_wall(column_count, 0);
+  for (const FrontFace& f : front.faces)
+    if (f.wall)
+      for (int k = 0; k < f.corner_count; ++k)
+        on_wall[static_cast<std::size_t>(f.columns[static_cast<std::size_t>(k)])] = 1;
+  std::vector<Vector3> direction(column_count, Vector3::UnitZ());
+  direction = column_normals(front, current, face_active, true, direction, on_wall, 1.0);
+  previous = current;
+
+  MarchReport& report = result.report;
+  report.layers_requested = static_cast<int>(steps.size());
+  report.first_spacing = steps.front();
+  std::map<int, StoppedRegion> stopped;
+  std::vector<char> node_stopped(surface.points.size(), 0);
+
+  for (int layer = 0; layer < static_cast<int>(steps.size()); ++layer) {
+    std::vector<char> column_active(column_count, 0);
+    for (std::size_t face = 0; face < face_count; ++face)
+      if (face_active[face])
+        for (int k = 0; k < front.faces[face].corner_count; ++k)
+          column_active[static_cast<std::size_t>(front.faces[face].columns[static_cast<std::size_t>(k)])] = 1;
+    const double release = smoothed ? release_weight(options, layer) : 1.0;
+    const std::vector<Vector3> normal =
+        column_normals(front, current, face_active, smoothed, direction, on_wall, release);
+
+    // Predictor: the layer normal, blended with the previous marching direction.
+    const double memory = smoothed && layer > 0 ? options.direction_memory : 0.0;
+    std::vector<double> step(column_count, steps[static_cast<std::size_t>(layer)]);
+    std::vector<Vector3> predicted_direction(column_count);
+    for (std::size_t c = 0; c < column_count; ++c) {
+      const Vector3 before = unit_or(current[c] - previous[c], normal[c]);
+      predicted_direction[c] = unit_or((1.0 - memory) * normal[c] + memory * before, normal[c]);
+      if (front.on_symmetry[c])
+        predicted_direction[c] =
+            unit_or(Vector3(predicted_direction[c].x(), 0.0, predicted_direction[c].z()), normal[c]);
+    }
+    std::vector<Vector3> next(column_count);
+    for (std::size_t c = 0; c < column_count; ++c) next[c] = current[c] + step[c] * predicted_direction[c];
+
+    // Corrector: face-weighted Laplace, then the control functions (step length held,
+    // orthogonal direction near the wall, smoothed direction released outwards).
+    if (smoothed) {
+      const std::vector<Vector3> corrected =
+          march_detail::solve_layer(front, options.sweeps, face_active, current, next, surface.symmetry_y);
+      for (std::size_t c = 0; c < column_count; ++c) {
+        // The corrector moves the node sideways; its pull along the line (inwards at
+        // convex, outwards at concave corners) is the spacing the control holds.
+        const Vector3& along = predicted_direction[c];
+        Vector3 sideways = corrected[c] - next[c];
+        sideways -= sideways.dot(along) * along;
+        Vector3 smooth = unit_or(step[c] * along + sideways, along);
+        if (smooth.dot(normal[c]) < 0.2) smooth = along;  // never turn back into the wall
+        next[c] = current[c] + step[c] * unit_or((1.0 - release) * predicted_direction[c] + release * smooth,
+                                                 predicted_direction[c]);
+      }
+    }
+    // Direction smoothing over the released layers: neighbouring lines turn together,
+    // so thin cells at convex corners (tip edge, tip leading edge) do not shear over.
+    if (smoothed && release > 0.0 && options.direction_smoothing_passes > 0) {
+      std::vector<Vector3> ahead = next;
+      for (int pass = 0; pass < options.direction_smoothing_passes; ++pass) {
+        const std::vector<Vector3> mean =
+            march_detail::neighbour_mean_directions(front, column_active, current, ahead);
+        for (std::size_t c = 0; c < column_count; ++c)
+          if (column_active[c]) ahead[c] = current[c] + step[c] * mean[c];
+      }
+      for (std::size_t c = 0; c < column_count; ++c)
+        if (column_active[c]) {
+          const Vector3 own = unit_or(next[c] - current[c], normal[c]);
+          const Vector3 mean = unit_or(ahead[c] - current[c], own);
+          next[c] = current[c] + step[c] * unit_or((1.0 - release) * own + release * mean, own);
+        }
+    }
+    for (std::size_t c = 0; c < column_count; ++c)
+      if (front.on_symmetry[c]) next[c].y() = surface.symmetry_y;
+
+    // Safety: shorten and locally smooth the steps of failing columns, then stop them.
+    std::vector<int> active_faces;
+    for (std::size_t face = 0; face < face_count; ++face)
+      if (face_active[face]) active_faces.push_back(static_cast<int>(face));
+    auto failing = [&](const std::vector<int>& faces) {
+      std::vector<int> bad = march_detail::invalid_cells(front, faces, current, next);
+      const std::size_t invalid = bad.size();
+      if (options.check_self_intersection) {
+        const std::vector<int> crossing =
+            march_detail::intersecting_faces(front, active_faces, current, next);
+        bad.insert(bad.end(), crossing.begin(), crossing.end());
+      }
+      if (log && !bad.empty())
+        log->detail("march: layer " + std::to_string(layer + 1) + ": " + std::to_string(invalid) +
+                    " invalid cells, " + std::to_string(bad.size() - invalid) + " crossing faces");
+      std::sort(bad.begin(), bad.end());
+      bad.erase(std::unique(bad.begin(), bad.end()), bad.end());
+      return bad;
+    };
+    std::vector<int> bad = failing(active_faces);
+    // Retries of the failing columns: first their direction is smoothed with their
+    // neighbours', then they march along the layer normal (orthogonal to the faces
+    // around them), then their step is halved, step_reductions times.
+    for (int attempt = 0; attempt <= options.step_reductions + 1 && !bad.empty(); ++attempt) {
+      const std::vector<Vector3> mean_direction =
+          attempt == 0 ? march_detail::neighbour_mean_directions(front, column_active, current, next)
+                       : normal;
+      std::vector<char> touched(column_count, 0);
+      for (int face : bad)
+        for (int k = 0; k < front.faces[static_cast<std::size_t>(face)].corner_count; ++k)
+          touched[static_cast<std::size_t>(
+              front.faces[static_cast<std::size_t>(face)].columns[static_cast<std::size_t>(k)])] = 1;
+      std::vector<int> recheck;
+      for (std::size_t c = 0; c < column_count; ++c) {
+        if (!touched[c]) continue;
+        if (attempt > 1) {
+          step[c] *= 0.5;
+          ++report.reduced_steps;
+        }
+        next[c] = current[c] + step[c] * unit_or(mean_direction[c] + normal[c], normal[c]);
+        if (front.on_symmetry[c]) next[c].y() = surface.symmetry_y;
+        for (int face : front.column_faces[c])
+          if (face_active[static_cast<std::size_t>(face)]) recheck.push_back(face);
+      }
+      std::sort(recheck.begin(), recheck.end());
+      recheck.erase(std::unique(recheck.begin(), recheck.end()), recheck.end());
+      bad = failing(recheck);
+    }
+    for (int face : bad) {
+      face_active[static_cast<std::size_t>(face)] = 0;
+      const FrontFace& f = front.faces[static_cast<std::size_t>(face)];
+      StoppedRegion& region = stopped[layer];
+      region.layer = layer;
+      ++region.faces;
+      Vector3 centre = Vector3::Zero();
+      for (int k = 0; k < f.corner_count; ++k) {
+        const Index node =
+            front.column_node[static_cast<std::size_t>(f.columns[static_cast<std::size_t>(k)])];
+        centre += surface.points[static_cast<std::size_t>(node)] / f.corner_count;
+        node_stopped[static_cast<std::size_t>(node)] = 1;
+      }
+      region.location += centre;
+    }
+
+    // Commit the layer: new points for columns with an active face, then the cells.
+    std::fill(column_active.begin(), column_active.end(), 0);
+    for (std::size_t face = 0; face < face_count; ++face)
+      if (face_active[face])
+        for (int k = 0; k < front.faces[face].corner_count; ++k)
+          column_active[static_cast<std::size_t>(front.faces[face].columns[static_cast<std::size_t>(k)])] = 1;
+    bool any = false;
+    for (std::size_t c = 0; c < column_count; ++c) {
+      if (!column_active[c]) continue;
+      any = true;
+      result.column_points[c].push_back(static_cast<Index>(result.mesh.points.size()));
+      result.mesh.points.push_back(next[c]);
+      direction[c] = unit_or(next[c] - current[c], direction[c]);
+      previous[c] = current[c];
+      current[c] = next[c];
+    }
+    for (std::size_t face = 0; face < face_count; ++face)
+      if (face_active[face]) {
+        march_detail::add_swept_cell(front, static_cast<int>(face), layer, result);
+        ++result.face_layers[face];
+      }
+    if (log)
+      log->detail("march: layer " + std::to_string(layer + 1) + " of " + std::to_string(steps.size()) + ", " +
+                  std::to_string(bad.size()) + " faces stopped");
+    if (!any) break;
+  }
+  march_detail::add_boundary_faces(front, options, result);
+
+  report.layers_completed = *std::min_element(result.face_layers.begin(), result.face_layers.end());
+  for (int layer = 0; layer < report.layers_completed; ++layer)
+    report.total_thickness += steps[static_cast<std::size_t>(layer)];
+  for (auto& [layer, region] : stopped) {
+    region.location /= region.faces;
+    report.stopped_faces += region.faces;
+    report.stopped.push_back(region);
+  }
+  report.stopped_nodes = static_cast<int>(std::count(node_stopped.begin(), node_stopped.end(), 1));
+  report.seconds = stopwatch.seconds();
+  if (log) {
+    log->info("march: " + std::to_string(report.layers_completed) + " of " +
+              std::to_string(report.layers_requested) + " layers everywhere, first spacing " +
+              std::to_string(report.first_spacing) + " m, thickness " +
+              std::to_string(report.total_thickness) + " m, " + std::to_string(result.mesh.cell_count()) +
+              " cells");
+    for (const StoppedRegion& region : report.stopped)
+      log->warning("march: " + std::to_string(region.faces) + " faces stopped at layer " +
+                   std::to_string(region.layer) + " near " + describe(region.location));
+  }
+  return result;
+}
+
+}  // namespace mixmesh

@@ -1,0 +1,73 @@
+// 32 layers on the paper-scale ONERA M6 surface (200 x 80 wing faces, the wake and
+// the tip cap), marched by the smoothed method and by the plain-normal baseline.
+#include <benchmark/benchmark.h>
+
+#include <filesystem>
+
+#include "mixmesh/geometry/airfoil.hpp"
+#include "mixmesh/geometry/planform.hpp"
+#include "mixmesh/march/march_layers.hpp"
+#include "mixmesh/surface/wing_surface.hpp"
+
+namespace {
+
+const mixmesh::SurfaceMesh& onera_m6_surface() {
+  static const mixmesh::SurfaceMesh surface = [] {
+    const auto airfoil_file =
+        std::filesystem::path(__FILE__).parent_path() / ".." / ".." / "cases" / "airfoils" / "onera_d.dat";
+    mixmesh::ClassicPlanform planform;
+    planform.root_chord = 0.8059;
+    planform.semi_span = 1.1963;
+    planform.leading_edge_sweep_degrees = 30.0;
+    planform.trailing_edge_sweep_degrees = 15.8;
+    return mixmesh::generate_wing_surface(
+        mixmesh::classic_wing(planform, mixmesh::read_airfoil_file(airfoil_file)), mixmesh::SurfaceOptions{});
+  }();
+  return surface;
+}
+
+void march(benchmark::State& state, mixmesh::MarchMethod method, bool intersection_check = true) {
+  const mixmesh::SurfaceMesh& surface = onera_m6_surface();
+  mixmesh::MarchOptions options;  // 32 layers, y+ = 1 at Re 11.72e6 on the MAC
+  options.method = method;
+  options.check_self_intersection = intersection_check;
+  std::size_t cells = 0;
+  int stopped = 0;
+  for (auto _ : state) {
+    const mixmesh::BoundaryLayer layer = mixmesh::march_layers(surface, options);
+    cells = layer.mesh.cell_count();
+    stopped = layer.report.stopped_faces;
+    benchmark::DoNotOptimize(cells);
+  }
+  state.counters["cells"] = static_cast<double>(cells);
+  state.counters["stopped_faces"] = stopped;
+}
+
+void smoothed_march(benchmark::State& state) {
+  march(state, mixmesh::MarchMethod::smoothed);
+}
+void normal_extrusion(benchmark::State& state) {
+  march(state, mixmesh::MarchMethod::normal);
+}
+void smoothed_march_without_intersection_check(benchmark::State& state) {
+  march(state, mixmesh::MarchMethod::smoothed, false);
+}
+
+}  // namespace
+
+BENCHMARK(smoothed_march)
+    ->Unit(benchmark::kSecond)
+    ->Iterations(1)
+    ->Repetitions(5)
+    ->ReportAggregatesOnly(true);
+BENCHMARK(smoothed_march_without_intersection_check)
+    ->Unit(benchmark::kSecond)
+    ->Iterations(1)
+    ->Repetitions(3)
+    ->ReportAggregatesOnly(true);
+BENCHMARK(normal_extrusion)
+    ->Unit(benchmark::kSecond)
+    ->Iterations(1)
+    ->Repetitions(3)
+    ->ReportAggregatesOnly(true);
+BENCHMARK_MAIN();

@@ -1,0 +1,68 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numeric>
+
+#include "mixmesh/core/error.hpp"
+#include "mixmesh/march/spacing.hpp"
+
+namespace mixmesh {
+namespace {
+
+TEST(MarchSpacing, YPlusEstimateForTheOneraM6) {
+  // Cf = 0.026 / (11.72e6)^(1/7) = 2.541e-3; sqrt(Cf / 2) = 3.565e-2;
+  // spacing = 0.646 / (11.72e6 * 3.565e-2) = 1.546e-6 m.
+  EXPECT_NEAR(first_spacing_from_y_plus(1.0, 11.72e6, 0.646), 1.546e-6, 0.005e-6);
+  // Linear in y+ and in the length at fixed Reynolds number.
+  EXPECT_NEAR(first_spacing_from_y_plus(2.0, 11.72e6, 0.646),
+              2.0 * first_spacing_from_y_plus(1.0, 11.72e6, 0.646), 1e-18);
+  EXPECT_NEAR(first_spacing_from_y_plus(1.0, 11.72e6, 1.292),
+              2.0 * first_spacing_from_y_plus(1.0, 11.72e6, 0.646), 1e-18);
+  // The defaults are the M6 test point.
+  SpacingOptions defaults;
+  EXPECT_EQ(defaults.layer_count, 32);
+  EXPECT_NEAR(layer_steps(defaults).front(), 1.546e-6, 0.005e-6);
+}
+
+TEST(MarchSpacing, GeometricGrowth) {
+  SpacingOptions options;
+  options.first_spacing = 1e-3;
+  options.layer_count = 5;
+  options.growth_rate = 1.5;
+  const std::vector<double> steps = layer_steps(options);
+  ASSERT_EQ(steps.size(), 5u);
+  for (std::size_t k = 0; k < steps.size(); ++k) EXPECT_NEAR(steps[k], 1e-3 * std::pow(1.5, k), 1e-15);
+}
+
+TEST(MarchSpacing, TanhGrowthMeetsFirstSpacingAndThickness) {
+  SpacingOptions options;
+  options.growth_law = GrowthLaw::tanh;
+  options.first_spacing = 1e-5;
+  options.layer_count = 32;
+  options.total_thickness = 0.01;
+  const std::vector<double> steps = layer_steps(options);
+  ASSERT_EQ(steps.size(), 32u);
+  EXPECT_NEAR(steps.front(), 1e-5, 1e-9);
+  EXPECT_NEAR(std::accumulate(steps.begin(), steps.end(), 0.0), 0.01, 1e-12);
+  for (std::size_t k = 1; k < steps.size(); ++k) EXPECT_GT(steps[k], steps[k - 1]);
+}
+
+TEST(MarchSpacing, RejectsInconsistentOptions) {
+  EXPECT_THROW(first_spacing_from_y_plus(0.0, 1e6, 1.0), Error);
+  EXPECT_THROW(first_spacing_from_y_plus(1.0, -1.0, 1.0), Error);
+  EXPECT_THROW(first_spacing_from_y_plus(1.0, 1e6, 0.0), Error);
+  SpacingOptions options;
+  options.layer_count = 0;
+  EXPECT_THROW(layer_steps(options), Error);
+  options.layer_count = 10;
+  options.growth_rate = 0.9;
+  EXPECT_THROW(layer_steps(options), Error);
+  options.growth_rate = 1.2;
+  options.growth_law = GrowthLaw::tanh;
+  options.first_spacing = 1e-3;
+  options.total_thickness = 5e-3;  // thinner than 10 uniform first steps
+  EXPECT_THROW(layer_steps(options), Error);
+}
+
+}  // namespace
+}  // namespace mixmesh

@@ -1,0 +1,89 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "march_surfaces.hpp"
+#include "mixmesh/march/march_metrics.hpp"
+
+namespace mixmesh {
+namespace {
+
+MarchOptions wing_options() {
+  MarchOptions options;
+  options.spacing.layer_count = 32;
+  // y+ = 1 at Re = 1e7 on the unit root chord: about 2.5e-6, 32 layers, 1.25 growth.
+  options.spacing.target_y_plus = 1.0;
+  options.spacing.reynolds_number = 1e7;
+  options.spacing.reference_length = 1.0;
+  options.spacing.growth_rate = 1.25;
+  return options;
+}
+
+void print(const char* name, const BoundaryLayer& layer, const MarchMetrics& m) {
+  std::printf(
+      "%-9s cells %6zu invalid %d  min s.J. %.4f  first line max/p99 %.2f/%.2f deg  growth jump %.3f  "
+      "turn max/p99 %.2f/%.2f deg  stopped faces %d\n",
+      name, layer.mesh.cell_count(), m.invalid_cells, m.minimum_scaled_jacobian,
+      m.maximum_normal_deviation_degrees, m.percentile99_normal_deviation_degrees, m.maximum_growth_jump,
+      m.maximum_line_turn_degrees, m.percentile99_line_turn_degrees, layer.report.stopped_faces);
+}
+
+void check_wing(const march_surfaces::TestWing& wing) {
+  const SurfaceMesh surface = march_surfaces::wing(wing);
+  const BoundaryLayer layer = march_layers(surface, wing_options());
+  const MarchMetrics metrics = measure_march(layer, surface, "wing");
+  print("smoothed", layer, metrics);
+  MarchOptions normal = wing_options();
+  normal.method = MarchMethod::normal;
+  const BoundaryLayer plain = march_layers(surface, normal);
+  const MarchMetrics baseline = measure_march(plain, surface, "wing");
+  print("normal", plain, baseline);
+  // The smoothed march against plain normal extrusion (docs/march.md, Comparison).
+  EXPECT_GT(metrics.minimum_scaled_jacobian, baseline.minimum_scaled_jacobian);
+  EXPECT_LT(metrics.percentile99_normal_deviation_degrees, baseline.percentile99_normal_deviation_degrees);
+  EXPECT_LT(metrics.maximum_growth_jump, baseline.maximum_growth_jump);
+  EXPECT_LT(metrics.maximum_line_turn_degrees, baseline.maximum_line_turn_degrees);
+  EXPECT_LE(layer.report.stopped_faces, plain.report.stopped_faces);
+  EXPECT_EQ(metrics.invalid_cells, 0);
+  EXPECT_GE(metrics.fraction_within_2_degrees, 0.99);
+  EXPECT_EQ(layer.report.stopped_faces, 0);
+  // Lines starting in the symmetry plane stay exactly in it.
+  for (std::size_t c = 0; c < layer.column_points.size(); ++c)
+    if (surface.points[static_cast<std::size_t>(layer.column_node[c])].y() == 0.0) {
+      for (Index point : layer.column_points[c]) {
+        EXPECT_EQ(layer.mesh.points[static_cast<std::size_t>(point)].y(), 0.0);
+      }
+    }
+  // The wake sheet is interior: its faces carry cells on both sides and no marker.
+  EXPECT_LT(layer.mesh.find_marker("wake"), 0);
+  std::size_t wake_cells = 0;
+  for (std::size_t f = 0; f < layer.face_wall.size(); ++f) wake_cells += layer.face_wall[f] ? 0 : 1;
+  EXPECT_EQ(wake_cells % 2, 0u);
+  EXPECT_GT(wake_cells, 0u);
+  const FaceConnectivity faces = match_faces(layer.mesh);
+  EXPECT_TRUE(faces.conforming());
+  EXPECT_TRUE(faces.untagged_boundary.empty());
+  EXPECT_TRUE(faces.stray_boundary_faces.empty());
+}
+
+TEST(MarchWing, StraightWing) {
+  check_wing({});
+}
+
+TEST(MarchWing, SweptTaperedTwistedWing) {
+  march_surfaces::TestWing wing;
+  wing.sweep_degrees = 45.0;
+  wing.taper = 0.3;
+  wing.tip_twist_degrees = -5.0;
+  check_wing(wing);
+}
+
+TEST(MarchWing, ThickWing) {
+  march_surfaces::TestWing wing;
+  wing.naca = "0021";
+  check_wing(wing);
+}
+
+}  // namespace
+}  // namespace mixmesh
