@@ -8,6 +8,7 @@
 namespace mixmesh::cli {
 
 // add_NAME_command declarations go here, one per subcommand.
+void add_deform_command(CLI::App& application);
 void add_march_command(CLI::App& application);
 void add_surface_command(CLI::App& application);
 void add_check_command(CLI::App& application);

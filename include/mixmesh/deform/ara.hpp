@@ -1,0 +1,115 @@
+// The ARA mesh movement method (Martineau & Georgala, AIAA 2004-614, §4.3; method.md §7):
+// a predictor–corrector on the dual mesh (cell centres as nodes, faces as edges).
+//
+//   1. distance metrics   nearest face on the two nearest boundaries of every cell
+//                         centre, exact point–face distances; α = d₂/(d₁+d₂) (eq. 2)
+//   2. predictor          each centre moves rigidly with its nearest face on each
+//                         boundary (eq. 9), blended by β(α) (eq. 10–11); the cell's
+//                         rotation is blended the same way
+//   3. corrector          Gauss–Seidel smoothing of the mesh velocity u and angular
+//                         velocity w with Baker's diffusivity (eq. 12–21)
+//   4. interpolation      each node moves with the rigid motion of its cells, weighted
+//                         by pseudo-Laplacian weights (eq. 22–26)
+//   5. repair             nodes of inverted cells are re-interpolated with weights that
+//                         favour small and inverted cells (eq. 27), up to 10 passes
+//
+// A "boundary" is a connected set of wall faces (fixed or moving markers; symmetry
+// markers are not walls): in a wing case the wing surface is one boundary and the far
+// field another.
+#pragma once
+
+#include <array>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "mixmesh/deform/deform.hpp"
+
+namespace mixmesh::deform {
+
+// β(α), eq. 11 (reconstructed; the extracted text reads only "β = [exp(c(α))]^γ").
+//   exponential  β = ½ + ½ (1 − e^{−γ s}) / (1 − e^{−γ}),  s = 2α − 1 ∈ [0, 1]
+//   linear       β = α (the original algorithm's blend)
+// Both give β(1) = 1 at a boundary, β(½) = ½ on the median surface, and increase
+// monotonically; a larger γ widens the near field that follows its boundary rigidly.
+enum class BlendForm { exponential, linear };
+double blend(double alpha, double gamma, BlendForm form);
+
+// Predictor: rotation + translation of the nearest faces (the paper's new scheme) or
+// translation only (the original algorithm, for comparison).
+enum class Predictor { rotation, translation };
+
+// Velocity smoothing (eq. 19): neighbour velocities as they are (plain), or each
+// neighbour's velocity transported rigidly to the cell with the neighbour's smoothed
+// rotation, u_j + (R_j − I)(x_i − x_j) (rigid_transport, the default with the
+// rotation predictor). The transport makes every rigid motion a fixed point of the
+// smoothing, so the rotation the predictor gives the near field survives it; plain
+// eq. 19 relaxes the near-wall velocity towards a translation and skews the wall-normal
+// grid lines. With the translation predictor both are the same.
+enum class Smoothing { rigid_transport, plain };
+
+struct AraOptions {
+  Predictor predictor = Predictor::rotation;
+  Smoothing smoothing = Smoothing::rigid_transport;
+  BlendForm blend_form = BlendForm::exponential;
+  double gamma = 4.0;
+  // Candidate boundary faces per k-d tree query; the exact distance picks among them.
+  int candidates = 8;
+  // Smoothing (eq. 19): global relaxation ε, r.m.s. tolerance relative to the largest
+  // boundary displacement (rotation: relative to the largest boundary rotation),
+  // iteration cap.
+  double relaxation = 0.8;
+  double tolerance = 1e-4;
+  int max_iterations = 500;
+  int repair_passes = 10;
+  // File of cached nearest faces, read when it matches the mesh and written when not
+  // (empty: cache in memory only, across the steps of a sequence).
+  std::filesystem::path cache_file;
+};
+
+// Nearest boundary faces of every cell: faces[c] = {nearest face on the nearest
+// boundary, nearest face on the second-nearest boundary} (-1 when there is only one
+// boundary), as indices into the method's list of wall faces.
+struct NearestFaces {
+  std::size_t cell_count = 0;
+  std::size_t wall_face_count = 0;
+  std::vector<std::array<Index, 2>> faces;
+};
+void write_nearest_faces(const NearestFaces& nearest, const std::filesystem::path& file);
+// Throws mixmesh::Error for a file that is not a nearest-face cache.
+NearestFaces read_nearest_faces(const std::filesystem::path& file);
+
+struct AraReport {
+  double distance_seconds = 0.0;
+  bool cache_used = false;
+  int smoothing_iterations = 0;
+  double smoothing_residual = 0.0;
+  int repair_passes = 0;
+  std::size_t inverted_after_interpolation = 0;
+  std::size_t inverted_after_repair = 0;
+};
+
+class AraMethod : public DeformationMethod {
+ public:
+  explicit AraMethod(AraOptions options = {}) : options_(std::move(options)) {}
+  std::string name() const override { return "ara"; }
+  std::vector<Vector3> move(const MixedMesh& mesh, const BoundaryMotion& boundary, const Log& log) override;
+
+  const AraReport& last_report() const { return report_; }
+  const NearestFaces& nearest_faces() const { return nearest_; }
+  // Forget the cached nearest faces (the next move searches again).
+  void clear_cache() { nearest_ = {}; }
+
+ private:
+  AraOptions options_;
+  NearestFaces nearest_;
+  AraReport report_;
+};
+
+// Reads gamma, predictor, smoothing, blend, candidates, relaxation, tolerance, max_iterations,
+// repair_passes, cache from an [ara] table.
+AraOptions read_ara_options(config::Section& section);
+std::unique_ptr<DeformationMethod> make_ara_method(config::Section* options);
+
+}  // namespace mixmesh::deform

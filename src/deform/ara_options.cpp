@@ -1,0 +1,92 @@
+// The ARA blend β(α), its options and the nearest-face cache file.
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <fstream>
+
+#include "mixmesh/core/atomic_file.hpp"
+#include "mixmesh/core/error.hpp"
+#include "mixmesh/deform/ara.hpp"
+
+namespace mixmesh::deform {
+
+double blend(double alpha, double gamma, BlendForm form) {
+  const double clamped = std::clamp(alpha, 0.5, 1.0);
+  if (form == BlendForm::linear) return clamped;
+  // Eq. 11 (reconstructed): s = 2α − 1 runs from 0 on the median surface to 1 at the
+  // boundary; an exponential rise in s, scaled to pass through (0, ½) and (1, 1).
+  const double s = 2.0 * clamped - 1.0;
+  if (gamma <= 0.0) return 0.5 + 0.5 * s;  // the limit γ → 0
+  return 0.5 + 0.5 * (1.0 - std::exp(-gamma * s)) / (1.0 - std::exp(-gamma));
+}
+
+AraOptions read_ara_options(config::Section& section) {
+  AraOptions options;
+  std::string predictor = "rotation";
+  section.read_choice("predictor", predictor, {"rotation", "translation"});
+  options.predictor = predictor == "rotation" ? Predictor::rotation : Predictor::translation;
+  std::string smoothing = "rigid_transport";
+  section.read_choice("smoothing", smoothing, {"rigid_transport", "plain"});
+  options.smoothing = smoothing == "plain" ? Smoothing::plain : Smoothing::rigid_transport;
+  std::string form = "exponential";
+  section.read_choice("blend", form, {"exponential", "linear"});
+  options.blend_form = form == "exponential" ? BlendForm::exponential : BlendForm::linear;
+  section.read("gamma", options.gamma, config::Bounds::positive());
+  section.read("candidates", options.candidates, config::Bounds::between(1, 256));
+  section.read("relaxation", options.relaxation, config::Bounds::between(0.0, 1.0));
+  section.read("tolerance", options.tolerance, config::Bounds::positive());
+  section.read("max_iterations", options.max_iterations, config::Bounds::non_negative());
+  section.read("repair_passes", options.repair_passes, config::Bounds::between(0, 100));
+  section.read_path("cache", options.cache_file);
+  section.finish();
+  return options;
+}
+
+std::unique_ptr<DeformationMethod> make_ara_method(config::Section* options) {
+  return std::make_unique<AraMethod>(options ? read_ara_options(*options) : AraOptions{});
+}
+
+namespace {
+constexpr char cache_magic[8] = {'M', 'X', 'A', 'R', 'A', 'N', 'F', '1'};
+}
+
+void write_nearest_faces(const NearestFaces& nearest, const std::filesystem::path& file) {
+  write_atomically(file, [&](const std::filesystem::path& temporary) {
+    std::ofstream stream(temporary, std::ios::binary);
+    if (!stream) throw Error(temporary.string() + ": cannot open for writing");
+    const std::uint64_t counts[2] = {nearest.cell_count, nearest.wall_face_count};
+    stream.write(cache_magic, sizeof cache_magic);
+    stream.write(reinterpret_cast<const char*>(counts), sizeof counts);
+    stream.write(reinterpret_cast<const char*>(nearest.faces.data()),
+                 static_cast<std::streamsize>(nearest.faces.size() * sizeof(nearest.faces[0])));
+    if (!stream) throw Error(file.string() + ": write failed");
+  });
+}
+
+NearestFaces read_nearest_faces(const std::filesystem::path& file) {
+  std::ifstream stream(file, std::ios::binary);
+  if (!stream) throw Error(file.string() + ": cannot open the nearest-face cache");
+  char magic[8] = {};
+  std::uint64_t counts[2] = {0, 0};
+  stream.read(magic, sizeof magic);
+  stream.read(reinterpret_cast<char*>(counts), sizeof counts);
+  if (!stream || std::memcmp(magic, cache_magic, sizeof magic) != 0)
+    throw Error(file.string() + ": not a mixmesh nearest-face cache");
+  if (counts[0] > (std::uint64_t{1} << 34) || counts[1] > (std::uint64_t{1} << 34))
+    throw Error(file.string() + ": implausible counts in the nearest-face cache");
+  NearestFaces nearest;
+  nearest.cell_count = counts[0];
+  nearest.wall_face_count = counts[1];
+  nearest.faces.resize(nearest.cell_count);
+  stream.read(reinterpret_cast<char*>(nearest.faces.data()),
+              static_cast<std::streamsize>(nearest.faces.size() * sizeof(nearest.faces[0])));
+  if (!stream) throw Error(file.string() + ": the nearest-face cache is truncated");
+  for (const auto& pair : nearest.faces)
+    for (Index face : pair)
+      if (face < -1 || face >= static_cast<Index>(nearest.wall_face_count))
+        throw Error(file.string() + ": face index " + std::to_string(face) + " out of range in the cache");
+  return nearest;
+}
+
+}  // namespace mixmesh::deform

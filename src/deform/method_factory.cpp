@@ -1,0 +1,125 @@
+// Methods by name, and motion files with their method table.
+#include <algorithm>
+#include <cmath>
+
+#include "mixmesh/config/config.hpp"
+#include "mixmesh/core/error.hpp"
+#include "mixmesh/deform/ara.hpp"
+#include "mixmesh/deform/deform.hpp"
+#include "mixmesh/deform/idw.hpp"
+
+namespace mixmesh::deform {
+
+namespace {
+
+// The IDW method behind the framework's interface: moving bodies and fixed markers
+// become IdwBody sets, symmetry nodes become IdwSymmetryPlane constraints.
+class IdwMethod : public DeformationMethod {
+ public:
+  explicit IdwMethod(IdwOptions options) : options_(std::move(options)) {}
+  std::string name() const override { return "idw"; }
+
+  std::vector<Vector3> move(const MixedMesh& mesh, const BoundaryMotion& boundary, const Log& log) override {
+    IdwInput input;
+    std::vector<Index> volume_nodes;
+    int body_count = 0;
+    for (int body : boundary.body) body_count = std::max(body_count, body + 1);
+    input.bodies.resize(static_cast<std::size_t>(body_count) + 1);
+    IdwBody& fixed = input.bodies.back();
+    fixed.name = "fixed";
+    fixed.moving = false;
+    for (int body = 0; body < body_count; ++body)
+      input.bodies[static_cast<std::size_t>(body)].name = "body " + std::to_string(body + 1);
+    for (std::size_t node = 0; node < mesh.points.size(); ++node) {
+      if (boundary.roles[node] != NodeRole::prescribed) {
+        volume_nodes.push_back(static_cast<Index>(node));
+        input.volume_points.push_back(mesh.points[node]);
+        continue;
+      }
+      const int body = boundary.body[node];
+      if (body < 0) {
+        fixed.positions.push_back(mesh.points[node]);
+        continue;
+      }
+      IdwBody& target = input.bodies[static_cast<std::size_t>(body)];
+      target.positions.push_back(mesh.points[node]);
+      target.displacements.push_back(boundary.displacement[node]);
+      target.rotations.push_back(Eigen::AngleAxisd(boundary.rotation[node].norm(),
+                                                   boundary.rotation[node].norm() > 0.0
+                                                       ? Vector3(boundary.rotation[node].normalized())
+                                                       : Vector3::UnitZ())
+                                     .toRotationMatrix());
+    }
+    input.bodies.erase(std::remove_if(input.bodies.begin(), input.bodies.end(),
+                                      [](const IdwBody& body) { return body.positions.empty(); }),
+                       input.bodies.end());
+    // One plane per distinct (normal, offset) of the sliding nodes.
+    for (std::size_t node = 0; node < mesh.points.size(); ++node) {
+      if (boundary.roles[node] != NodeRole::sliding) continue;
+      const Vector3& normal = boundary.slide_normal[node];
+      const double offset = normal.dot(mesh.points[node]);
+      const bool known =
+          std::any_of(input.symmetry_planes.begin(), input.symmetry_planes.end(), [&](const auto& plane) {
+            return (plane.normal - normal).norm() < 1e-9 &&
+                   std::abs(plane.offset - offset) < 1e-9 * (1.0 + std::abs(offset));
+          });
+      if (!known) input.symmetry_planes.push_back({normal, offset});
+    }
+    const IdwResult result = idw_deform(input, options_);
+    std::vector<Vector3> points = mesh.points;
+    for (std::size_t slot = 0; slot < volume_nodes.size(); ++slot)
+      points[static_cast<std::size_t>(volume_nodes[slot])] += result.displacements[slot];
+    for (std::size_t node = 0; node < points.size(); ++node)
+      if (boundary.roles[node] == NodeRole::prescribed) points[node] += boundary.displacement[node];
+    log.detail("idw: " + std::to_string(volume_nodes.size()) + " nodes moved by " +
+               std::to_string(input.bodies.size()) + " boundary sets");
+    return points;
+  }
+
+ private:
+  IdwOptions options_;
+};
+
+IdwOptions read_idw_options(config::Section& section) {
+  IdwOptions options;
+  std::string form = "rotation";
+  section.read_choice("form", form, {"rotation", "simple"});
+  options.form = form == "rotation" ? IdwForm::rotation : IdwForm::simple;
+  section.read("exponent", options.exponent, config::Bounds::positive());
+  section.read("exact", options.exact);
+  section.read("tree_tolerance", options.tree_tolerance, config::Bounds::positive());
+  if (section.has("translation_exponent")) {
+    double value = 1.0;
+    section.read("translation_exponent", value, config::Bounds::non_negative());
+    options.translation_exponent = value;
+  }
+  if (section.has("rotation_exponent")) {
+    double value = 2.0;
+    section.read("rotation_exponent", value, config::Bounds::non_negative());
+    options.rotation_exponent = value;
+  }
+  section.read("reference_count", options.reference_count, config::Bounds::at_least(1));
+  section.finish();
+  return options;
+}
+
+}  // namespace
+
+std::unique_ptr<DeformationMethod> make_method(const std::string& name, config::Section* options) {
+  if (name == "ara") return make_ara_method(options);
+  if (name == "idw") return std::make_unique<IdwMethod>(options ? read_idw_options(*options) : IdwOptions{});
+  throw Error("unknown deformation method '" + name + "' (ara or idw)");
+}
+
+DeformSetup read_deform_setup(const std::filesystem::path& motion_file) {
+  const config::Document document = config::Document::load(motion_file);
+  config::Section root = document.root();
+  DeformSetup setup;
+  setup.motion = read_motion(root);
+  std::optional<config::Section> options = root.optional_section(setup.motion.method);
+  setup.method = make_method(setup.motion.method, options ? &*options : nullptr);
+  root.finish();
+  return setup;
+}
+
+}  // namespace mixmesh::deform

@@ -1,0 +1,30 @@
+// Rotation vectors and small helpers shared by the framework and the methods.
+// Internal to the deform module.
+#pragma once
+
+#include <vector>
+
+#include "mixmesh/deform/deform.hpp"
+
+namespace mixmesh::deform::detail {
+
+// The rotation by rotation vector `rotation` (axis × angle, radians) applied to `vector`
+// (Rodrigues' formula).
+Vector3 rotate(const Vector3& rotation, const Vector3& vector);
+
+// The rotation matrix of a rotation vector.
+Eigen::Matrix3d rotation_matrix(const Vector3& rotation);
+
+// Rotation vector of a rotation matrix.
+Vector3 rotation_vector(const Eigen::Matrix3d& rotation);
+
+// Least-squares rotation taking the offsets `before` to `after` (Kabsch); when
+// `planar`, the rotation about z only. Zero for fewer than two usable offsets.
+Vector3 fit_rotation(const std::vector<Vector3>& before, const std::vector<Vector3>& after, bool planar);
+
+// Moves sliding nodes of `moved` back into their symmetry plane through their position
+// in `original` (removes the normal part of their displacement).
+void project_sliding(const BoundaryMotion& boundary, const std::vector<Vector3>& original,
+                     std::vector<Vector3>& moved);
+
+}  // namespace mixmesh::deform::detail

@@ -1,0 +1,51 @@
+# Deformation cases: the NACA 0012 pitch (ARA with rotation terms and the original
+# translation-only predictor) and the wing under a bending + twist mode shape.
+set(deform_output ${CMAKE_CURRENT_BINARY_DIR}/deform)
+file(MAKE_DIRECTORY ${deform_output})
+set(naca_case ${PROJECT_SOURCE_DIR}/cases/naca0012)
+set(wing_case ${PROJECT_SOURCE_DIR}/cases/wing)
+
+# 0 → 20° in 5° steps: every step valid (the command fails otherwise), and at 20° the
+# wall-normal grid lines of the airfoil turn with it to within 2°.
+add_test(NAME deform_naca0012_pitch
+         COMMAND mixmesh-cli deform ${naca_case}/naca0012.msh --motion ${naca_case}/pitch.toml
+                 -o ${deform_output}/naca0012_pitch.vtu)
+set_tests_properties(deform_naca0012_pitch PROPERTIES LABELS regression
+  PASS_REGULAR_EXPRESSION "step 4: wall-line angle change: moving walls [01]\\.[0-9]+ deg"
+  FAIL_REGULAR_EXPRESSION "error|INVALID")
+
+# The same with the translation-only predictor: the wall lines skew by more than 2°.
+add_test(NAME deform_naca0012_pitch_translation_only
+         COMMAND mixmesh-cli deform ${naca_case}/naca0012.msh --motion ${naca_case}/pitch_translation_only.toml
+                 --keep-invalid -o ${deform_output}/naca0012_pitch_translation.vtu)
+set_tests_properties(deform_naca0012_pitch_translation_only PROPERTIES LABELS regression
+  PASS_REGULAR_EXPRESSION "step 4: wall-line angle change: moving walls ([2-9]|[1-9][0-9]+)\\.[0-9]+ deg")
+
+# The independent checker on the 20° mesh, and the leading-edge angles of both runs.
+add_test(NAME deform_naca0012_pitch_leading_edge
+         COMMAND ${MIXMESH_PYTHON} ${CMAKE_CURRENT_LIST_DIR}/deform_wall_angles.py ${naca_case}/naca0012.msh
+                 ${deform_output}/naca0012_pitch_0004.vtu --marker airfoil --at-most 2.0)
+set_tests_properties(deform_naca0012_pitch_leading_edge PROPERTIES LABELS regression
+  DEPENDS deform_naca0012_pitch)
+
+# Wing, bending + twist mode with sliding root and tip planes: valid by check_mesh.py.
+add_test(NAME deform_wing_bend_twist
+         COMMAND mixmesh-cli deform ${wing_case}/wing.msh --motion ${wing_case}/bend_twist.toml
+                 -o ${deform_output}/wing_bend_twist.vtu)
+set_tests_properties(deform_wing_bend_twist PROPERTIES LABELS regression FAIL_REGULAR_EXPRESSION "error|INVALID")
+add_test(NAME deform_wing_bend_twist_check
+         COMMAND ${MIXMESH_PYTHON} ${MIXMESH_CHECK_MESH} --no-foam -q ${deform_output}/wing_bend_twist.vtu)
+set_tests_properties(deform_wing_bend_twist_check PROPERTIES LABELS regression DEPENDS deform_wing_bend_twist)
+
+# Bad input fails with one line and writes nothing.
+add_test(NAME deform_rejects_unknown_marker
+         COMMAND mixmesh-cli deform ${naca_case}/naca0012.msh --motion ${CMAKE_CURRENT_LIST_DIR}/deform_unknown_marker.toml
+                 -o ${deform_output}/never_written.vtu)
+set_tests_properties(deform_rejects_unknown_marker PROPERTIES LABELS regression WILL_FAIL TRUE)
+
+# Without --keep-invalid the translation-only run fails at 10° with the inverted cells.
+add_test(NAME deform_naca0012_translation_only_fails
+         COMMAND mixmesh-cli deform ${naca_case}/naca0012.msh --motion ${naca_case}/pitch_translation_only.toml
+                 -o ${deform_output}/naca0012_never_written.vtu)
+set_tests_properties(deform_naca0012_translation_only_fails PROPERTIES LABELS regression
+  PASS_REGULAR_EXPRESSION "step 2: [0-9]+ cells stay inverted after repair; (triangle|quad) [0-9]+ at \\(")

@@ -1,0 +1,242 @@
+// The ARA method on planar and volume O-grids around an ellipse.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include "deform_meshes.hpp"
+#include "mixmesh/core/error.hpp"
+#include "mixmesh/deform/ara.hpp"
+
+namespace mixmesh::deform {
+namespace {
+
+using testing::OGrid;
+using testing::VolumeKind;
+
+Motion rotate_wall(double angle, const Vector3& centre = Vector3::Zero()) {
+  Body body;
+  body.name = "body";
+  body.markers = {"wall"};
+  body.law = MotionLaw::rigid;
+  body.centre = centre;
+  body.axis = Vector3::UnitZ();
+  body.angle = angle;
+  Motion motion;
+  motion.bodies = {body};
+  return motion;
+}
+
+const Log quiet;
+
+TEST(DeformBlend, ReconstructedEquationElevenKeepsItsStatedProperties) {
+  for (double gamma : {2.0, 4.0, 8.0}) {
+    EXPECT_NEAR(blend(1.0, gamma, BlendForm::exponential), 1.0, 1e-14);
+    EXPECT_NEAR(blend(0.5, gamma, BlendForm::exponential), 0.5, 1e-14);
+    double previous = 0.0;
+    for (double alpha = 0.5; alpha <= 1.0; alpha += 0.01) {
+      const double value = blend(alpha, gamma, BlendForm::exponential);
+      EXPECT_GE(value, previous);
+      EXPECT_GE(value, alpha - 1e-12);  // the near field follows its boundary at least as closely as β = α
+      previous = value;
+    }
+  }
+  // A larger γ widens the region that moves with its boundary.
+  EXPECT_LT(blend(0.7, 2.0, BlendForm::exponential), blend(0.7, 4.0, BlendForm::exponential));
+  EXPECT_LT(blend(0.7, 4.0, BlendForm::exponential), blend(0.7, 8.0, BlendForm::exponential));
+  EXPECT_DOUBLE_EQ(blend(0.7, 4.0, BlendForm::linear), 0.7);
+  EXPECT_DOUBLE_EQ(blend(0.2, 4.0, BlendForm::linear), 0.5);  // α outside [0.5, 1] is clamped
+}
+
+TEST(DeformAra, PlanarRotationKeepsTheMeshValidAndTheFarFieldFixed) {
+  OGrid grid;
+  const MixedMesh mesh = testing::planar_o_grid(grid);
+  AraMethod method;
+  const Motion motion = rotate_wall(20.0);
+  const DeformResult result = deform_step(mesh, mesh, motion, 1, method, quiet);
+  EXPECT_TRUE(result.valid);
+  EXPECT_EQ(result.invalid_count, 0u);
+  const Eigen::Matrix3d rotation = axis_rotation(Vector3::UnitZ(), 20.0);
+  const int around = grid.around;
+  for (int i = 0; i < around; ++i) {
+    const std::size_t wall = static_cast<std::size_t>(i);
+    const std::size_t far = static_cast<std::size_t>((grid.outward - 1) * around + i);
+    const std::size_t first_layer = static_cast<std::size_t>(around + i);
+    EXPECT_LT((result.mesh.points[wall] - rotation * mesh.points[wall]).norm(), 1e-12);
+    EXPECT_LT((result.mesh.points[far] - mesh.points[far]).norm(), 1e-12);
+    // The first layer above the wall moves with the body almost rigidly.
+    const Vector3 rigid = rotation * mesh.points[first_layer];
+    EXPECT_LT((result.mesh.points[first_layer] - rigid).norm(),
+              0.02 * (rigid - mesh.points[first_layer]).norm() + 1e-6)
+        << "node " << first_layer;
+  }
+  EXPECT_FALSE(method.last_report().cache_used);
+  EXPECT_GT(method.last_report().smoothing_iterations, 0);
+}
+
+TEST(DeformAra, RotationTermsKeepWallLinesOrthogonalWhereTranslationOnlySkewsThem) {
+  // Rotation about a point off the body's centre (the ellipse's "quarter chord").
+  OGrid grid;
+  grid.around = 64;
+  grid.outward = 24;
+  grid.first_spacing = 0.002;
+  grid.quad_layers = 12;
+  const MixedMesh mesh = testing::planar_o_grid(grid);
+  const Motion motion = rotate_wall(20.0, Vector3(-0.5, 0.0, 0.0));
+  AraMethod with_rotation;
+  AraOptions translation_options;
+  translation_options.predictor = Predictor::translation;
+  AraMethod translation_only(translation_options);
+  const DeformResult rotated = deform_step(mesh, mesh, motion, 1, with_rotation, quiet);
+  const DeformResult translated = deform_step(mesh, mesh, motion, 1, translation_only, quiet);
+  EXPECT_TRUE(rotated.valid);
+  EXPECT_LT(rotated.max_wall_angle_change, 2.0);
+  EXPECT_GT(translated.max_wall_angle_change, 10.0 * rotated.max_wall_angle_change);
+  // Plain eq. 19 smoothing relaxes the near-wall rotation away.
+  AraOptions plain_options;
+  plain_options.smoothing = Smoothing::plain;
+  AraMethod plain(plain_options);
+  const DeformResult plain_result = deform_step(mesh, mesh, motion, 1, plain, quiet);
+  EXPECT_GT(plain_result.max_wall_angle_change, rotated.max_wall_angle_change);
+}
+
+TEST(DeformAra, UniformTranslationOfEveryBoundaryTranslatesTheWholeMesh) {
+  const MixedMesh mesh = testing::planar_o_grid(OGrid{});
+  Body body;
+  body.markers = {"wall", "farfield"};
+  body.translation = Vector3(0.3, -0.2, 0.0);
+  Motion motion;
+  motion.bodies = {body};
+  AraMethod method;
+  const DeformResult result = deform_step(mesh, mesh, motion, 1, method, quiet);
+  for (std::size_t node = 0; node < mesh.points.size(); ++node)
+    EXPECT_LT((result.mesh.points[node] - mesh.points[node] - body.translation).norm(), 1e-12);
+}
+
+TEST(DeformAra, NoMotionMovesNothing) {
+  const MixedMesh mesh = testing::planar_o_grid(OGrid{});
+  AraMethod method;
+  const DeformResult result = deform_step(mesh, mesh, rotate_wall(0.0), 1, method, quiet);
+  for (std::size_t node = 0; node < mesh.points.size(); ++node)
+    EXPECT_LT((result.mesh.points[node] - mesh.points[node]).norm(), 1e-12);
+}
+
+TEST(DeformAra, CachedNearestFacesGiveTheSameMesh) {
+  const MixedMesh mesh = testing::planar_o_grid(OGrid{});
+  AraMethod method;
+  const Motion motion = rotate_wall(10.0);
+  const DeformResult first = deform_step(mesh, mesh, motion, 1, method, quiet);
+  EXPECT_FALSE(method.last_report().cache_used);
+  const NearestFaces nearest = method.nearest_faces();
+  EXPECT_EQ(nearest.faces.size(), nearest.cell_count);
+  const DeformResult second = deform_step(mesh, mesh, motion, 1, method, quiet);
+  EXPECT_TRUE(method.last_report().cache_used);
+  for (std::size_t node = 0; node < mesh.points.size(); ++node)
+    EXPECT_EQ(first.mesh.points[node], second.mesh.points[node]);
+
+  // Through a file, and a second method object.
+  const auto file = std::filesystem::temp_directory_path() / "mixmesh_deform_cache_test.bin";
+  std::filesystem::remove(file);
+  AraOptions options;
+  options.cache_file = file;
+  AraMethod writer(options);
+  deform_step(mesh, mesh, motion, 1, writer, quiet);
+  EXPECT_FALSE(writer.last_report().cache_used);
+  ASSERT_TRUE(std::filesystem::exists(file));
+  const NearestFaces stored = read_nearest_faces(file);
+  EXPECT_EQ(stored.faces, nearest.faces);
+  AraMethod reader(options);
+  const DeformResult third = deform_step(mesh, mesh, motion, 1, reader, quiet);
+  EXPECT_TRUE(reader.last_report().cache_used);
+  for (std::size_t node = 0; node < mesh.points.size(); ++node)
+    EXPECT_EQ(first.mesh.points[node], third.mesh.points[node]);
+  std::filesystem::remove(file);
+}
+
+TEST(DeformAra, NearestFacesLieOnTheTwoBoundaries) {
+  const OGrid grid;
+  const MixedMesh mesh = testing::planar_o_grid(grid);
+  AraMethod method;
+  deform_step(mesh, mesh, rotate_wall(5.0), 1, method, quiet);
+  // Wall faces come first in the edge list order (wall, farfield alternate); the first
+  // nearest face of a cell next to the wall is a wall edge, the second a far-field one.
+  const NearestFaces& nearest = method.nearest_faces();
+  ASSERT_EQ(nearest.wall_face_count, static_cast<std::size_t>(2 * grid.around));
+  for (int i = 0; i < grid.around; ++i) {
+    const auto& faces = nearest.faces[static_cast<std::size_t>(i)];  // quads of the first ring
+    EXPECT_EQ(mesh.boundary_edges.markers[static_cast<std::size_t>(faces[0])], mesh.find_marker("wall"));
+    EXPECT_EQ(mesh.boundary_edges.markers[static_cast<std::size_t>(faces[1])], mesh.find_marker("farfield"));
+  }
+}
+
+TEST(DeformAra, CacheFileRejectsOtherFiles) {
+  const auto file = std::filesystem::temp_directory_path() / "mixmesh_deform_not_a_cache.bin";
+  {
+    std::ofstream stream(file);
+    stream << "not a cache";
+  }
+  EXPECT_THROW(read_nearest_faces(file), Error);
+  std::filesystem::remove(file);
+  EXPECT_THROW(read_nearest_faces(file), Error);
+}
+
+class DeformAraVolume : public ::testing::TestWithParam<VolumeKind> {};
+
+TEST_P(DeformAraVolume, RotationWithSymmetryPlanesStaysValid) {
+  OGrid grid;
+  grid.around = 24;
+  grid.outward = 10;
+  grid.first_spacing = 0.02;
+  grid.quad_layers = 4;
+  grid.layers_z = 2;
+  const MixedMesh mesh = testing::volume_o_grid(grid, GetParam());
+  Motion motion = rotate_wall(15.0);
+  motion.symmetry = {"bottom", "top"};
+  AraMethod method;
+  const DeformResult result = deform_step(mesh, mesh, motion, 1, method, quiet);
+  EXPECT_TRUE(result.valid) << result.invalid_count << " invalid cells";
+  EXPECT_GT(result.after.min_scaled_jacobian, 0.0);
+  const Eigen::Matrix3d rotation = axis_rotation(Vector3::UnitZ(), 15.0);
+  bool some_sliding_node_moved = false;
+  for (std::size_t node = 0; node < mesh.points.size(); ++node) {
+    const Vector3& before = mesh.points[node];
+    const Vector3& after = result.mesh.points[node];
+    const bool on_end_plane = std::abs(before.z()) < 1e-12 || std::abs(before.z() - grid.height) < 1e-12;
+    if (on_end_plane) {
+      EXPECT_NEAR(after.z(), before.z(), 1e-12);  // slides in its plane
+    }
+    const double radius = (before.x() / grid.semi_major) * (before.x() / grid.semi_major) +
+                          (before.y() / grid.semi_minor) * (before.y() / grid.semi_minor);
+    if (std::abs(radius - 1.0) < 1e-9) {
+      EXPECT_LT((after - rotation * before).norm(), 1e-12);
+    }
+    if (on_end_plane && std::abs(radius - 1.0) > 1e-6 && before.head<2>().norm() < 0.9 * grid.outer_radius &&
+        (after - before).norm() > 1e-4)
+      some_sliding_node_moved = true;
+  }
+  EXPECT_TRUE(some_sliding_node_moved);
+}
+
+INSTANTIATE_TEST_SUITE_P(CellTypes, DeformAraVolume,
+                         ::testing::Values(VolumeKind::hexahedron, VolumeKind::prism, VolumeKind::tetrahedron,
+                                           VolumeKind::pyramid, VolumeKind::hex_and_prism));
+
+TEST(DeformAra, RejectsMotionSizedForAnotherMesh) {
+  const MixedMesh mesh = testing::planar_o_grid(OGrid{});
+  BoundaryMotion boundary = boundary_motion(mesh, mesh, rotate_wall(5.0), 1);
+  boundary.roles.pop_back();
+  AraMethod method;
+  EXPECT_THROW(method.move(mesh, boundary, quiet), Error);
+}
+
+TEST(DeformAra, RejectsAMeshWithoutWalls) {
+  const MixedMesh mesh = testing::planar_o_grid(OGrid{});
+  BoundaryMotion boundary = boundary_motion(mesh, mesh, rotate_wall(5.0), 1);
+  for (auto& role : boundary.marker_roles) role = MarkerRole::sliding;
+  AraMethod method;
+  EXPECT_THROW(method.move(mesh, boundary, quiet), Error);
+}
+
+}  // namespace
+}  // namespace mixmesh::deform
