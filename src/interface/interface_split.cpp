@@ -83,60 +83,107 @@ int diagonal_start(const std::vector<Vector3>& points, const Index* quad, HullDi
 
 namespace {
 
-// Splits one cell about its centre: a pyramid on every quad face that stays, two
-// tetrahedra on every outer quad, one tetrahedron on every triangle face. Outer faces
-// join the hull.
-void split_cell(CellType type, std::size_t cell, const Index* nodes, unsigned outer_faces, int region,
-                const InterfaceOptions& options, InterfaceResult& result) {
-  MixedMesh& out = result.mesh;
+// The pieces a split about `apex` makes: pyramids on the quads that stay, two
+// tetrahedra on every outer quad (along its chosen diagonal), one on every triangle.
+// visit(CellType, nodes, is_hull_triangle) with the apex as node index `apex_index`.
+template <typename Visit>
+void for_each_piece(CellType type, const std::vector<Vector3>& points, const Index* nodes, unsigned outer_faces,
+                    const InterfaceOptions& options, Index apex_index, Visit visit) {
   const CellDescriptor& shape = descriptor(type);
-  const Index centre = static_cast<Index>(out.points.size());
-  out.points.push_back(cell_centre(type, out.points, nodes));
-  result.centres.push_back(centre);
-  auto add_tetrahedron = [&](const std::array<Index, 3>& triangle, const std::string& where) {
-    // Tetrahedron face 0-2-1 is outward, so (a, c, b, centre) keeps a-b-c outward.
-    const Index tetrahedron[4] = {triangle[0], triangle[2], triangle[1], centre};
-    const auto& p = out.points;
-    if (tetrahedron_volume6(
-            p[static_cast<std::size_t>(tetrahedron[0])], p[static_cast<std::size_t>(tetrahedron[1])],
-            p[static_cast<std::size_t>(tetrahedron[2])], p[static_cast<std::size_t>(tetrahedron[3])]) <= 0.0)
-      throw Error("interface: splitting " + where + " about its centre gives an inverted tetrahedron");
-    out.add_cell(CellType::tetrahedron, tetrahedron, region);
-    ++result.tetrahedra;
-  };
   for (int face = 0; face < shape.face_count; ++face) {
     const LocalFace& local = shape.faces[static_cast<std::size_t>(face)];
     Index corners[4] = {-1, -1, -1, -1};  // outward from the cell
     for (int corner = 0; corner < local.node_count; ++corner)
       corners[corner] = nodes[local.nodes[static_cast<std::size_t>(corner)]];
     const bool outer = (outer_faces >> face) & 1u;
-    const std::string where = std::string(name(type)) + " " + std::to_string(cell) + " face " +
-                              std::to_string(face) + " near " +
-                              point_text(out.points[static_cast<std::size_t>(centre)]);
+    // Tetrahedron face 0-2-1 is outward, so (a, c, b, apex) keeps a-b-c outward.
+    auto tetrahedron = [&](Index a, Index b, Index c) {
+      const Index piece[4] = {a, c, b, apex_index};
+      visit(CellType::tetrahedron, piece, outer);
+    };
     if (local.node_count == 3) {
-      const std::array<Index, 3> triangle = {corners[0], corners[1], corners[2]};
-      add_tetrahedron(triangle, where);
-      if (outer) result.hull.push_back(triangle);
-      continue;
-    }
-    if (!outer) {
+      tetrahedron(corners[0], corners[1], corners[2]);
+    } else if (!outer) {
       // The pyramid base 0-1-2-3 turns counter-clockwise seen from the apex, i.e.
       // opposite to the cell's outward winding.
-      const Index pyramid[5] = {corners[0], corners[3], corners[2], corners[1], centre};
-      if (!cell_shape(CellType::pyramid, out.points, pyramid).valid())
-        throw Error("interface: splitting " + where + " about its centre gives an inverted pyramid");
-      out.add_cell(CellType::pyramid, pyramid, region);
-      ++result.pyramids;
-      continue;
-    }
-    const int start = diagonal_start(out.points, corners, options.diagonal);
-    for (const std::array<Index, 3>& triangle :
-         {std::array<Index, 3>{corners[start], corners[start + 1], corners[start + 2]},
-          std::array<Index, 3>{corners[start], corners[start + 2], corners[(start + 3) % 4]}}) {
-      add_tetrahedron(triangle, where);
-      result.hull.push_back(triangle);
+      const Index piece[5] = {corners[0], corners[3], corners[2], corners[1], apex_index};
+      visit(CellType::pyramid, piece, false);
+    } else {
+      const int start = diagonal_start(points, corners, options.diagonal);
+      tetrahedron(corners[start], corners[start + 1], corners[start + 2]);
+      tetrahedron(corners[start], corners[start + 2], corners[(start + 3) % 4]);
     }
   }
+}
+
+// The worst piece of a split about the last point of `points`: the smallest corner
+// Jacobian (scaled), negative when a piece is inverted or tangled.
+double worst_piece(CellType type, const std::vector<Vector3>& points, const Index* nodes, unsigned outer_faces,
+                   const InterfaceOptions& options) {
+  double worst = 1.0;
+  const Index apex = static_cast<Index>(points.size() - 1);
+  for_each_piece(type, points, nodes, outer_faces, options, apex, [&](CellType piece, const Index* corners, bool) {
+    const CellShape shape = cell_shape(piece, points, corners);
+    worst = std::min(worst, shape.valid() ? shape.min_corner_jacobian : -1.0 - shape.negative_corners);
+  });
+  return worst;
+}
+
+// The split point: the cell centre (Wild Fig. 2) unless a piece about it is inverted
+// or nearly so (a thin cell with a warped face), then the best point a compass search
+// around the centre finds. The last point of `points` is the candidate.
+Vector3 split_point(CellType type, std::vector<Vector3>& points, const Index* nodes, unsigned outer_faces,
+                    const InterfaceOptions& options) {
+  Vector3 best = cell_centre(type, points, nodes);
+  points.push_back(best);
+  double best_worst = worst_piece(type, points, nodes, outer_faces, options);
+  double step = 0.0;
+  for (int corner = 0; corner < node_count(type); ++corner)
+    step = std::max(step, (points[static_cast<std::size_t>(nodes[corner])] - best).norm());
+  step *= 0.25;
+  const Vector3 directions[6] = {Vector3::UnitX(), -Vector3::UnitX(), Vector3::UnitY(),
+                                 -Vector3::UnitY(), Vector3::UnitZ(), -Vector3::UnitZ()};
+  for (int iteration = 0; iteration < 60 && best_worst < options.centre_quality; ++iteration) {
+    bool improved = false;
+    for (const Vector3& direction : directions) {
+      points.back() = best + step * direction;
+      const double worst = worst_piece(type, points, nodes, outer_faces, options);
+      if (worst > best_worst) {
+        best_worst = worst;
+        best = points.back();
+        improved = true;
+      }
+    }
+    if (!improved) step *= 0.5;
+  }
+  points.pop_back();
+  return best;
+}
+
+// Splits one cell about its split point: a pyramid on every quad face that stays, two
+// tetrahedra on every outer quad, one tetrahedron on every triangle face. Outer faces
+// join the hull.
+void split_cell(CellType type, std::size_t cell, const Index* nodes, unsigned outer_faces, int region,
+                const InterfaceOptions& options, InterfaceResult& result) {
+  MixedMesh& out = result.mesh;
+  const Vector3 point = split_point(type, out.points, nodes, outer_faces, options);
+  const Index centre = static_cast<Index>(out.points.size());
+  out.points.push_back(point);
+  result.centres.push_back(centre);
+  for_each_piece(type, out.points, nodes, outer_faces, options, centre,
+                 [&](CellType piece, const Index* corners, bool outer) {
+                   if (!cell_shape(piece, out.points, corners).valid())
+                     throw Error("interface: splitting " + std::string(name(type)) + " " + std::to_string(cell) +
+                                 " near " + point_text(point) + " gives an inverted " + std::string(name(piece)));
+                   out.add_cell(piece, corners, region);
+                   if (piece == CellType::pyramid) {
+                     ++result.pyramids;
+                     return;
+                   }
+                   ++result.tetrahedra;
+                   // The tetrahedron (a, c, b, apex) of an outer triangle a-b-c.
+                   if (outer) result.hull.push_back({corners[0], corners[2], corners[1]});
+                 });
 }
 
 // Keeps the cell and caps every outer quad with a pyramid outside it, apex above the

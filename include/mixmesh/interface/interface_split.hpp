@@ -54,7 +54,11 @@ enum class HullDiagonal {
 struct InterfaceOptions {
   HullDiagonal diagonal = HullDiagonal::shorter;
   std::string hull_marker = "interface";
-  // A cell whose centre split would give an inverted piece (a thin cell with a warped
+  // Cells are split about their centre (the mean of their nodes) unless the worst
+  // piece's scaled corner Jacobian would fall below this; then the split point is the
+  // best one a compass search around the centre finds.
+  double centre_quality = 0.1;
+  // A cell whose split would still give an inverted piece (a thin cell with a warped
   // face, e.g. deep in the layers beside a free edge) is kept whole and each of its
   // outer quads gets a pyramid outside it, apex above the quad's centre at cap_height
   // times the quad's shortest edge; false: such a cell is an error.
