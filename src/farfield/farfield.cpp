@@ -182,7 +182,7 @@ FarFieldResult farfield(const FarFieldInput& input, const FarFieldOptions& optio
 
   farfield_parts::LayerPoints layers;
   if (options.sizing == FarFieldSizing::anisotropic) {
-    FarFieldInput local_input{points, hull, {}, {}};
+    FarFieldInput local_input{points, hull, {}, {}, {}};
     for (std::size_t entry = 0; entry < input.metric_nodes.size(); ++entry) {
       const auto found = local_of.find(input.metric_nodes[entry]);
       if (found == local_of.end()) continue;
@@ -212,7 +212,9 @@ FarFieldResult farfield(const FarFieldInput& input, const FarFieldOptions& optio
   tetgen.triangles = hull;
   tetgen.triangles.insert(tetgen.triangles.end(), plane.begin(), plane.end());
   tetgen.triangles.insert(tetgen.triangles.end(), outer.triangles.begin(), outer.triangles.end());
-  // A hole just behind the largest hull triangle keeps TetGen out of the body.
+  // Holes keep TetGen out of the body: the caller's points inside it, or else a
+  // point just behind the largest hull triangle.
+  tetgen.holes = input.holes;
   std::size_t largest = 0;
   double largest_area = -1.0;
   for (std::size_t face = 0; face < hull.size(); ++face) {
@@ -222,7 +224,7 @@ FarFieldResult farfield(const FarFieldInput& input, const FarFieldOptions& optio
   const Vector3 hole_normal = face_area_vector(points, hull[largest].data(), 3).normalized();
   Vector3 hole_centre = Vector3::Zero();
   for (Index node : hull[largest]) hole_centre += points[static_cast<std::size_t>(node)] / 3.0;
-  tetgen.holes.push_back(hole_centre - 1e-3 * std::sqrt(largest_area) * hole_normal);
+  if (tetgen.holes.empty()) tetgen.holes.push_back(hole_centre - 1e-3 * std::sqrt(largest_area) * hole_normal);
 
   Eigen::Matrix3d forward = Eigen::Matrix3d::Identity(), backward = Eigen::Matrix3d::Identity();
   const bool dump = !options.dump_directory.empty();

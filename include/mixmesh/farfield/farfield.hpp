@@ -54,9 +54,11 @@ struct FarFieldOptions {
   double layer_growth = 1.25;  // ratio of successive normal spacings
   int maximum_layers = 40;
   double minimum_metric_distance = 0.6;  // inserted points closer than this (metric) are dropped
-  // Preconditioning of the point set before TetGen (method.md §5): shear + whitening by
-  // default, the fastest variant measured (docs/farfield.md).
-  bool precondition = true;
+  // Preconditioning of the point set before TetGen (method.md §5; shear + whitening
+  // when on, the fastest variant measured in docs/farfield.md). Off by default: on the
+  // ONERA M6 the map back inverted slivers next to the thin side faces at the wake's
+  // end (95 cells), and TetGen ran faster without it (docs/farfield.md).
+  bool precondition = false;
   PreconditionOptions preconditioning;
   // When set, the closed boundary is written there as legacy VTK after each transform:
   // boundary.vtk (as built), sheared.vtk (S⁻¹ P) and preconditioned.vtk (F P).
@@ -71,6 +73,9 @@ struct FarFieldInput {
   // Metrics of hull nodes (parallel lists); required for anisotropic sizing.
   std::vector<Index> metric_nodes;
   std::vector<Matrix3> metrics;
+  // Points inside the body (inside the hull, not in the far field), which TetGen
+  // leaves empty. When none is given, a point just behind the largest hull triangle.
+  std::vector<Vector3> holes;
 };
 
 // Distribution of the metric lengths of the edges of tetrahedra with a face on the
