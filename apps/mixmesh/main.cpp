@@ -11,6 +11,8 @@ int main(int argument_count, char** arguments) {
   application.require_subcommand(1);
   application.set_version_flag("--version", "mixmesh 0.1.0");
   // One line per subcommand (commands.hpp).
+  mixmesh::cli::add_batch_command(application);
+  mixmesh::cli::add_generate_command(application);
   mixmesh::cli::add_deform_command(application);
   mixmesh::cli::add_march_command(application);
   mixmesh::cli::add_surface_command(application);

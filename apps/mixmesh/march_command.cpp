@@ -43,7 +43,7 @@ void run_march(const MarchArguments& arguments) {
   for (const std::string& setting : arguments.settings) document.set(setting);
   GenerateOptions options = read_generate_options(document);
   if (arguments.normal) options.march.method = MarchMethod::normal;
-  const SurfaceMesh surface = generate_wing_surface(options.wing, options.surface);
+  const SurfaceMesh surface = build_surface(options.surface);
   const BoundaryLayer layer = march_layers(surface, options.march, &log);
   write_mesh(layer.mesh, arguments.output);  // written under a temporary name, then renamed
   log.info("wrote " + arguments.output.string());

@@ -1,0 +1,94 @@
+// The whole generator: config → wing (or imported patches) → surface → march → interface → metrics →
+// far field → one validated MixedMesh (architecture.md). Each stage reports one
+// progress line (stage, elapsed seconds, counts) through the log.
+//
+//   GenerateOptions options = read_generate_options(document);
+//   GenerateResult result = generate(options, log);   // throws mixmesh::Error
+//   write_outputs(result, options.output);            // nothing is written if invalid
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "mixmesh/config/config.hpp"
+#include "mixmesh/core/log.hpp"
+#include "mixmesh/farfield/farfield.hpp"
+#include "mixmesh/geometry/planform.hpp"
+#include "mixmesh/interface/interface_split.hpp"
+#include "mixmesh/march/march_layers.hpp"
+#include "mixmesh/mesh/mixed_mesh.hpp"
+#include "mixmesh/quality/validity.hpp"
+#include "mixmesh/surface/surface_config.hpp"
+
+namespace mixmesh {
+
+struct OutputOptions {
+  std::filesystem::path folder = ".";       // --output-dir overrides
+  std::string name;                         // file stem; default: the config's stem
+  std::vector<std::string> formats = {"vtu"};  // vtu, su2, cgns, msh
+  // true: one "wall" marker for every wall patch (wing_upper, wing_lower, tip);
+  // false: keep the patch names.
+  bool merge_wall_markers = true;
+};
+
+struct GenerateOptions {
+  SurfaceSetup surface;  // the wing ([wing], [surface]) and/or imported patches
+  MarchOptions march;
+  InterfaceOptions interface;
+  FarFieldOptions farfield;
+  OutputOptions output;
+};
+
+// Reads every table of a generate config ([wing], [surface], [march], [interface],
+// [farfield], [output]); unknown keys and tables are errors with their position.
+GenerateOptions read_generate_options(config::Document& document);
+
+struct StageTiming {
+  std::string stage;
+  double seconds = 0.0;
+};
+
+// Wild Table 1's row plus what a user checks first.
+struct GenerateReport {
+  std::size_t points = 0;
+  std::size_t surface_elements = 0;   // wall faces (wing, tip) and wake faces
+  std::size_t hexahedra = 0;
+  std::size_t tetrahedra = 0;
+  std::size_t prisms = 0;
+  std::size_t pyramids = 0;
+  double min_scaled_jacobian = 0.0;
+  MarchReport march;
+  FarFieldResult farfield_summary;    // counts and hull metric lengths (mesh emptied)
+  std::vector<StageTiming> stages;
+  double seconds = 0.0;
+};
+
+struct GenerateResult {
+  MixedMesh mesh;
+  ValidityReport validity;
+  GenerateReport report;
+};
+
+// Runs every stage and validates the assembled mesh (result.validity); throws
+// mixmesh::Error naming the stage when a stage fails.
+GenerateResult generate(const GenerateOptions& options, const Log& log);
+
+// The stages after the surface, on a given surface mesh (the hybrid baseline of
+// `mixmesh compare` marches an all-triangle surface this way). options.surface is
+// not used.
+GenerateResult generate_from_surface(const SurfaceMesh& surface, const GenerateOptions& options, const Log& log);
+
+// The files of options.formats in options.folder, each written atomically. Returns
+// the paths written. Throws, writing nothing, when the mesh is invalid.
+std::vector<std::filesystem::path> write_outputs(const GenerateResult& result, const OutputOptions& options);
+
+// The first offenders of each failed validity check, one per line, for error messages.
+std::string validity_details(const ValidityReport& validity);
+
+// "points 456212  surface 32826  hexahedra ..." (Table 1 order), and the same as TOML
+// for batch summaries.
+std::string table_row(const GenerateReport& report);
+void write_report(const std::filesystem::path& path, const GenerateReport& report);
+
+}  // namespace mixmesh

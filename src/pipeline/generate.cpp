@@ -1,0 +1,230 @@
+#include "mixmesh/pipeline/generate.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "assemble.hpp"
+#include "mixmesh/core/atomic_file.hpp"
+#include "mixmesh/io/mesh_io.hpp"
+#include "mixmesh/metric/metric.hpp"
+#include "mixmesh/quality/cell_quality.hpp"
+#include "mixmesh/surface/surface_conversion.hpp"
+
+namespace mixmesh {
+
+namespace {
+
+// Runs one stage and records its time; an Error from the stage is prefixed with
+// the stage's name so the user knows where it failed.
+template <typename Body>
+auto run_stage(const std::string& stage, GenerateReport& report, Body body) {
+  Stopwatch watch;
+  try {
+    auto result = body();
+    report.stages.push_back({stage, watch.seconds()});
+    return result;
+  } catch (const Error& error) {
+    const std::string message = error.what();
+    throw Error(message.rfind(stage + ":", 0) == 0 ? message : stage + ": " + message);
+  }
+}
+
+std::string seconds_text(double seconds) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.2f s", seconds);
+  return text;
+}
+
+std::vector<std::string> wall_marker_names(const SurfaceMesh& surface) {
+  std::vector<std::string> names;
+  for (const StructuredPatch& patch : surface.structured) {
+    if (patch.role != PatchRole::wall) continue;
+    names.push_back(patch.name);
+    names.push_back(patch.name + "_lower");
+    names.push_back(patch.name + "_upper");
+  }
+  for (const TrianglePatch& patch : surface.unstructured)
+    if (patch.role == PatchRole::wall) names.push_back(patch.name);
+  return names;
+}
+
+// Points inside the body for TetGen's holes: on each structured wall patch that wraps
+// a section (leading_edge_i set), the middle between a lower and the matching upper
+// node at mid-span, which lies inside the section.
+std::vector<Vector3> body_points(const SurfaceMesh& surface) {
+  std::vector<Vector3> points;
+  for (const StructuredPatch& patch : surface.structured) {
+    if (patch.role != PatchRole::wall || patch.leading_edge_i <= 0) continue;
+    const int lower = patch.leading_edge_i / 2;
+    const int upper = patch.ni - 1 - lower;
+    const int middle = patch.nj / 2;
+    points.push_back(0.5 * (surface.points[static_cast<std::size_t>(patch.node(lower, middle))] +
+                            surface.points[static_cast<std::size_t>(patch.node(upper, middle))]));
+  }
+  return points;
+}
+
+double min_scaled_jacobian(const MixedMesh& mesh) {
+  double minimum = 1.0;
+  for (CellType type : all_cell_types)
+    for (std::size_t cell = 0; cell < mesh.cell_count(type); ++cell)
+      minimum = std::min(minimum, scaled_jacobian(type, mesh.points, mesh.cell(type, cell)));
+  return minimum;
+}
+
+}  // namespace
+
+GenerateResult generate(const GenerateOptions& options, const Log& log) {
+  Stopwatch watch;
+  const SurfaceMesh surface = [&] {
+    try {
+      return build_surface(options.surface);
+    } catch (const Error& error) {
+      throw Error(std::string("surface: ") + error.what());
+    }
+  }();
+  const double seconds = watch.seconds();
+  log.info("surface: " + seconds_text(seconds) + ", " + std::to_string(surface.points.size()) + " points");
+  GenerateResult result = generate_from_surface(surface, options, log);
+  result.report.stages.insert(result.report.stages.begin(), StageTiming{"surface", seconds});
+  result.report.seconds += seconds;
+  return result;
+}
+
+GenerateResult generate_from_surface(const SurfaceMesh& surface, const GenerateOptions& options, const Log& log) {
+  Stopwatch total;
+  GenerateResult result;
+  GenerateReport& report = result.report;
+  report.surface_elements = to_mixed_mesh(surface).face_count();
+
+  BoundaryLayer layers = run_stage("march", report, [&] { return march_layers(surface, options.march, nullptr); });
+  report.march = layers.report;
+  log.info("march: " + seconds_text(report.stages.back().seconds) + ", " +
+           std::to_string(layers.report.layers_completed) + "/" + std::to_string(layers.report.layers_requested) +
+           " layers, " + std::to_string(layers.mesh.cell_count(CellType::hexahedron)) + " hexahedra, " +
+           std::to_string(layers.mesh.cell_count(CellType::prism)) + " prisms, first spacing " +
+           std::to_string(layers.report.first_spacing) + " m, thickness " +
+           std::to_string(layers.report.total_thickness) + " m");
+  if (layers.report.stopped_faces > 0)
+    log.warning("march: growth stopped early on " + std::to_string(layers.report.stopped_faces) + " faces (" +
+                std::to_string(layers.report.stopped_nodes) + " nodes)");
+
+  const InterfaceResult interface = run_stage("interface", report, [&] {
+    const OuterLayer outer = pipeline_detail::outer_layer(
+        layers.mesh, {options.march.outer_hull_marker, options.march.hull_side_marker});
+    return split_interface(layers.mesh, outer, options.interface);
+  });
+  log.info("interface: " + seconds_text(report.stages.back().seconds) + ", " + std::to_string(interface.pyramids) +
+           " pyramids, " + std::to_string(interface.tetrahedra) + " tetrahedra, hull of " +
+           std::to_string(interface.hull.size()) + " triangles");
+
+  FarFieldInput farfield_input;
+  if (options.farfield.sizing == FarFieldSizing::anisotropic) {
+    run_stage("metric", report, [&] {
+      std::set<Index> hull_nodes;
+      for (const auto& triangle : interface.hull) hull_nodes.insert(triangle.begin(), triangle.end());
+      // Nodes of the layers take the metrics of the layer cells before the split (the
+      // hexahedra's own shape); points the split added (cap apexes) take those of the
+      // cells around them after it.
+      const Index layer_points = static_cast<Index>(layers.mesh.points.size());
+      std::vector<Index> layer_nodes, added_nodes;
+      for (Index node : hull_nodes) (node < layer_points ? layer_nodes : added_nodes).push_back(node);
+      farfield_input.metric_nodes = layer_nodes;
+      farfield_input.metric_nodes.insert(farfield_input.metric_nodes.end(), added_nodes.begin(), added_nodes.end());
+      farfield_input.metrics = node_metrics(layers.mesh, layer_nodes);
+      const std::vector<Matrix3> added_metrics = node_metrics(interface.mesh, added_nodes);
+      farfield_input.metrics.insert(farfield_input.metrics.end(), added_metrics.begin(), added_metrics.end());
+      return 0;
+    });
+    log.info("metric: " + seconds_text(report.stages.back().seconds) + ", " +
+             std::to_string(farfield_input.metric_nodes.size()) + " hull node metrics");
+  }
+  farfield_input.points = interface.mesh.points;
+  farfield_input.holes = body_points(surface);
+  farfield_input.hull = interface.hull;
+  FarFieldOptions farfield_options = options.farfield;
+  farfield_options.symmetry_y = surface.symmetry_y;
+  // Far-field sizes are in chords of the wing, not of the hull, whose extent in x
+  // includes the wake.
+  if (farfield_options.reference_chord <= 0.0 && options.surface.wing)
+    farfield_options.reference_chord = options.surface.wing->stations.front().chord;
+  FarFieldResult farfield_result = run_stage("farfield", report, [&] {
+    return farfield(farfield_input, farfield_options, log);
+  });
+  log.info("farfield: " + seconds_text(report.stages.back().seconds) + ", " +
+           std::to_string(farfield_result.mesh.cell_count(CellType::tetrahedron)) + " tetrahedra, " +
+           std::to_string(farfield_result.mesh.points.size() - farfield_result.input_point_count) + " new points");
+
+  result.mesh = run_stage("assemble", report, [&] {
+    return pipeline_detail::assemble(interface.mesh, options.interface.hull_marker, farfield_result,
+                                     wall_marker_names(surface), options.output.merge_wall_markers);
+  });
+  result.validity = run_stage("validate", report, [&] { return validate(result.mesh); });
+  log.info("validate: " + seconds_text(report.stages.back().seconds) + ", " + result.validity.summary());
+
+  report.points = result.mesh.points.size();
+  report.hexahedra = result.mesh.cell_count(CellType::hexahedron);
+  report.tetrahedra = result.mesh.cell_count(CellType::tetrahedron);
+  report.prisms = result.mesh.cell_count(CellType::prism);
+  report.pyramids = result.mesh.cell_count(CellType::pyramid);
+  report.min_scaled_jacobian = min_scaled_jacobian(result.mesh);
+  farfield_result.mesh = MixedMesh();
+  report.farfield_summary = std::move(farfield_result);
+  report.seconds = total.seconds();
+  return result;
+}
+
+std::string validity_details(const ValidityReport& validity) {
+  std::ostringstream text;
+  for (const Finding& finding : validity.findings) {
+    if (finding.count == 0 || finding.severity != Finding::Severity::error) continue;
+    text << "  " << finding.count << " " << finding.description << ":";
+    for (const Offender& offender : finding.examples)
+      text << " " << offender.entity << " " << offender.index << " at (" << offender.location.x() << ", "
+           << offender.location.y() << ", " << offender.location.z() << ");";
+    text << "\n";
+  }
+  return text.str();
+}
+
+std::vector<std::filesystem::path> write_outputs(const GenerateResult& result, const OutputOptions& options) {
+  if (!result.validity.valid())
+    throw Error("validate: the assembled mesh is invalid, nothing written: " + result.validity.summary());
+  std::filesystem::create_directories(options.folder);
+  std::vector<std::filesystem::path> written;
+  for (const std::string& format : options.formats) {
+    const std::filesystem::path path = options.folder / (options.name + "." + format);
+    write_mesh(result.mesh, path);
+    written.push_back(path);
+  }
+  return written;
+}
+
+std::string table_row(const GenerateReport& report) {
+  std::ostringstream row;
+  row << "points " << report.points << "  surface elements " << report.surface_elements << "  hexahedra "
+      << report.hexahedra << "  tetrahedra " << report.tetrahedra << "  prisms " << report.prisms << "  pyramids "
+      << report.pyramids;
+  return row.str();
+}
+
+void write_report(const std::filesystem::path& path, const GenerateReport& report) {
+  write_atomically(path, [&](const std::filesystem::path& temporary) {
+    std::ofstream file(temporary);
+    file << "# mixmesh generate report\n"
+         << "points = " << report.points << "\nsurface_elements = " << report.surface_elements
+         << "\nhexahedra = " << report.hexahedra << "\ntetrahedra = " << report.tetrahedra
+         << "\nprisms = " << report.prisms << "\npyramids = " << report.pyramids
+         << "\nmin_scaled_jacobian = " << report.min_scaled_jacobian << "\nlayers_completed = "
+         << report.march.layers_completed << "\nstopped_faces = " << report.march.stopped_faces
+         << "\nhull_metric_edges_within_range = " << report.farfield_summary.hull_lengths.within_range
+         << "\nseconds = " << report.seconds << "\n\n[stages]\n";
+    for (const StageTiming& stage : report.stages) file << stage.stage << " = " << stage.seconds << "\n";
+    if (!file.flush()) throw Error(path.string() + ": cannot write report");
+  });
+}
+
+}  // namespace mixmesh

@@ -1,0 +1,148 @@
+// The tables of a generate config. Defaults live in the stage option structs; this
+// file only maps keys onto them.
+#include <cmath>
+
+#include "mixmesh/pipeline/generate.hpp"
+#include "mixmesh/surface/surface_config.hpp"
+
+namespace mixmesh {
+
+namespace {
+
+using config::Bounds;
+
+//   [march]
+//   layers = 32
+//   first_spacing = 0.0        # metres; 0: from y_plus, reynolds_number, reference_length
+//   y_plus = 1.0
+//   reynolds_number = 11.72e6
+//   reference_length = 0.646
+//   growth_law = "geometric"   # or "tanh" (then total_thickness)
+//   growth_rate = 1.25
+//   total_thickness = 0.0
+//   method = "smoothed"        # or "normal": the plain extrusion baseline
+//   sweeps = 12, orthogonal_layers = 3, release_layers = 10, direction_memory = 0.5
+//   step_reductions = 3, self_intersection_check = true
+MarchOptions read_march_options(config::Section& table) {
+  MarchOptions options;
+  SpacingOptions& spacing = options.spacing;
+  table.read("layers", spacing.layer_count, Bounds::at_least(1));
+  double first_spacing = 0.0;
+  table.read("first_spacing", first_spacing, Bounds::non_negative());
+  spacing.first_spacing = first_spacing > 0.0 ? first_spacing : -1.0;
+  table.read("y_plus", spacing.target_y_plus, Bounds::positive());
+  table.read("reynolds_number", spacing.reynolds_number, Bounds::positive());
+  table.read("reference_length", spacing.reference_length, Bounds::positive());
+  std::string growth_law = "geometric";
+  table.read_choice("growth_law", growth_law, {"geometric", "tanh"});
+  spacing.growth_law = growth_law == "tanh" ? GrowthLaw::tanh : GrowthLaw::geometric;
+  table.read("growth_rate", spacing.growth_rate, Bounds::at_least(1.0));
+  double thickness = 0.0;
+  table.read("total_thickness", thickness, Bounds::non_negative());
+  spacing.total_thickness = thickness > 0.0 ? thickness : -1.0;
+  std::string method = "smoothed";
+  table.read_choice("method", method, {"smoothed", "normal"});
+  options.method = method == "normal" ? MarchMethod::normal : MarchMethod::smoothed;
+  table.read("sweeps", options.sweeps, Bounds::at_least(0));
+  table.read("orthogonal_layers", options.orthogonal_layers, Bounds::at_least(0));
+  table.read("release_layers", options.release_layers, Bounds::at_least(0));
+  table.read("direction_memory", options.direction_memory, Bounds::between(0, 1));
+  table.read("step_reductions", options.step_reductions, Bounds::at_least(0));
+  table.read("self_intersection_check", options.check_self_intersection);
+  table.finish();
+  return options;
+}
+
+//   [interface]
+//   diagonal = "shorter"       # or "smallest_node"
+InterfaceOptions read_interface_options(config::Section& table) {
+  InterfaceOptions options;
+  std::string diagonal = "shorter";
+  table.read_choice("diagonal", diagonal, {"shorter", "smallest_node"});
+  options.diagonal = diagonal == "smallest_node" ? HullDiagonal::smallest_node : HullDiagonal::shorter;
+  table.finish();
+  return options;
+}
+
+//   [farfield]
+//   shape = "sphere"           # or "box"
+//   sizing = "isotropic"       # or "anisotropic" (see docs/farfield.md for its limits)
+//   radius = 20.0              # reference chords (sphere radius, box half-width)
+//   reference_chord = 0.0      # metres; 0: the wing's root chord
+//   farfield_size = 2.0        # edge length on the outer boundary, chords
+//   size_gradient = 0.25
+//   radius_edge_ratio = 1.5    # TetGen -q
+//   layer_growth = 1.25, maximum_layers = 40
+//   precondition = false       # see docs/farfield.md: true can invert slivers
+//   sweep = nan                # degrees; absent: estimated from the hull
+//   affine = "whitening"       # or "inverse" (Wild eq. 15) or "none"
+FarFieldOptions read_farfield_options(config::Section& table) {
+  FarFieldOptions options;
+  std::string shape = "sphere";
+  table.read_choice("shape", shape, {"sphere", "box"});
+  options.shape = shape == "box" ? FarFieldShape::box : FarFieldShape::sphere;
+  std::string sizing = options.sizing == FarFieldSizing::anisotropic ? "anisotropic" : "isotropic";
+  table.read_choice("sizing", sizing, {"anisotropic", "isotropic"});
+  options.sizing = sizing == "isotropic" ? FarFieldSizing::isotropic : FarFieldSizing::anisotropic;
+  table.read("radius", options.radius_in_chords, Bounds::positive());
+  table.read("reference_chord", options.reference_chord, Bounds::non_negative());
+  table.read("farfield_size", options.farfield_size_in_chords, Bounds::positive());
+  table.read("size_gradient", options.size_gradient, Bounds::positive());
+  table.read("radius_edge_ratio", options.radius_edge_ratio, Bounds::at_least(1.0));
+  table.read("layer_growth", options.layer_growth, Bounds::at_least(1.0));
+  table.read("maximum_layers", options.maximum_layers, Bounds::at_least(0));
+  table.read("precondition", options.precondition);
+  if (table.has("sweep")) table.read("sweep", options.preconditioning.sweep_degrees, Bounds::between(-80, 80));
+  std::string affine = "whitening";
+  table.read_choice("affine", affine, {"whitening", "inverse", "none"});
+  options.preconditioning.affine = affine == "inverse"  ? AffineMap::inverse
+                                   : affine == "none"   ? AffineMap::none
+                                                        : AffineMap::whitening;
+  table.finish();
+  return options;
+}
+
+//   [output]
+//   folder = "."               # relative to the working directory
+//   name = "onera_m6"          # default: the config's stem
+//   formats = ["vtu", "su2"]   # vtu, su2, cgns, msh
+//   merge_wall_markers = true
+OutputOptions read_output_options(config::Section& table, const std::filesystem::path& config_file) {
+  OutputOptions options;
+  options.name = config_file.stem().string();
+  std::string folder = options.folder.string();
+  table.read("folder", folder);
+  options.folder = folder;
+  table.read("name", options.name);
+  table.read("formats", options.formats);
+  for (const std::string& format : options.formats)
+    if (format != "vtu" && format != "su2" && format != "cgns" && format != "msh")
+      table.fail("formats", "unknown output format '" + format + "' (vtu, su2, cgns, msh)");
+  if (options.formats.empty()) table.fail("formats", "'output.formats' names no format");
+  table.read("merge_wall_markers", options.merge_wall_markers);
+  table.finish();
+  return options;
+}
+
+}  // namespace
+
+GenerateOptions read_generate_options(config::Document& document) {
+  GenerateOptions options;
+  config::Section root = document.root();
+  options.surface = read_surface_setup(root);
+  // Absent tables read as empty ones, so every default is set in one place.
+  const config::Document empty = config::Document::parse("", document.file());
+  config::Section no_table = empty.root();
+  auto march = root.optional_section("march");
+  options.march = read_march_options(march ? *march : no_table);
+  auto interface = root.optional_section("interface");
+  options.interface = read_interface_options(interface ? *interface : no_table);
+  auto farfield = root.optional_section("farfield");
+  options.farfield = read_farfield_options(farfield ? *farfield : no_table);
+  auto output = root.optional_section("output");
+  options.output = read_output_options(output ? *output : no_table, document.file());
+  root.finish();
+  return options;
+}
+
+}  // namespace mixmesh

@@ -1,0 +1,32 @@
+# The whole generator on a coarse ONERA M6 (64 x 16 wing faces, 32 layers), checked
+# by the independent checker; a bad config fails with its position; a batch of two
+# swept wings runs two at a time.
+set(pipeline_folder ${PROJECT_BINARY_DIR}/regression/pipeline)
+add_test(NAME pipeline_generate_onera_m6_coarse
+         COMMAND mixmesh-cli generate ${PROJECT_SOURCE_DIR}/cases/onera_m6.toml
+                 --set surface.chordwise_cells=64 --set surface.spanwise_cells=16
+                 --set "output.formats=[\"vtu\",\"su2\"]"
+                 --output-dir ${pipeline_folder} --report ${pipeline_folder}/report.toml)
+set_tests_properties(pipeline_generate_onera_m6_coarse PROPERTIES LABELS regression
+                     FIXTURES_SETUP pipeline_mesh
+                     PASS_REGULAR_EXPRESSION "points [0-9]+  surface elements [0-9]+  hexahedra [1-9][0-9]*  tetrahedra [1-9][0-9]*  prisms [1-9][0-9]*  pyramids [1-9][0-9]*")
+foreach(format vtu su2)
+  add_test(NAME pipeline_check_mesh_onera_m6_coarse_${format}
+           COMMAND ${MIXMESH_PYTHON} ${MIXMESH_CHECK_MESH} ${pipeline_folder}/onera_m6.${format} --no-foam -q)
+  set_tests_properties(pipeline_check_mesh_onera_m6_coarse_${format} PROPERTIES LABELS regression
+                       FIXTURES_REQUIRED pipeline_mesh PASS_REGULAR_EXPRESSION "\nVALID")
+endforeach()
+add_test(NAME pipeline_own_check_onera_m6_coarse COMMAND mixmesh-cli check ${pipeline_folder}/onera_m6.vtu -q)
+set_tests_properties(pipeline_own_check_onera_m6_coarse PROPERTIES LABELS regression FIXTURES_REQUIRED pipeline_mesh)
+
+add_test(NAME pipeline_bad_config_names_its_position
+         COMMAND mixmesh-cli generate ${CMAKE_CURRENT_LIST_DIR}/pipeline/bad_march.toml
+                 --output-dir ${pipeline_folder}/bad)
+set_tests_properties(pipeline_bad_config_names_its_position PROPERTIES LABELS regression
+                     PASS_REGULAR_EXPRESSION "bad_march.toml:8:10: 'march.layers' = 0 must be >= 1")
+
+add_test(NAME pipeline_batch_sweep_two_jobs
+         COMMAND mixmesh-cli batch ${CMAKE_CURRENT_LIST_DIR}/pipeline/swept_wings.toml -j 2
+                 -o ${pipeline_folder}/batch)
+set_tests_properties(pipeline_batch_sweep_two_jobs PROPERTIES LABELS regression
+                     PASS_REGULAR_EXPRESSION "batch: 2 ok, 0 failed")
