@@ -4,4 +4,6 @@ set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 "$root/scripts/build.sh"
 cd "$root"
-"$root/build/bin/mixmesh" check cases/meshes/four_types.vtu
+mkdir -p out
+"$root/build/bin/mixmesh" generate cases/onera_m6.toml --output-dir out
+"$root/build/bin/mixmesh" check out/onera_m6.vtu --quiet
