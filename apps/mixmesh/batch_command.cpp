@@ -30,8 +30,10 @@ void add_batch_command(CLI::App& application) {
   CLI::App* command = application.add_subcommand(
       "batch",
       "Generate many configs, N at a time, each in its own process and folder (OUTPUT/CASE with log.txt and "
-      "report.toml). A scalar config key given as a list (e.g. leading_edge_sweep = [0, 15, 30, 45]) runs once "
-      "per value, over the product of all such lists. Writes OUTPUT/summary.csv; the exit status is the number "
+      "report.toml). A scalar config key given as a list (e.g. leading_edge_sweep = [0, 15, 30, 45]) runs "
+      "once "
+      "per value, over the product of all such lists. Writes OUTPUT/summary.csv; the exit status is the "
+      "number "
       "of failed cases (0: all succeeded).");
   command->add_option("cases", arguments->inputs, "Config files, glob patterns or list files (.txt/.list)")
       ->required();
@@ -46,7 +48,8 @@ void add_batch_command(CLI::App& application) {
         config::Document document = config::Document::load(config);
         document.discover_sweeps();
         read_generate_options(document);  // checks the config and finds its sweeps
-        for (auto& expanded : batch::expand_sweeps(config, document.sweeps())) cases.push_back(std::move(expanded));
+        for (auto& expanded : batch::expand_sweeps(config, document.sweeps()))
+          cases.push_back(std::move(expanded));
       } catch (const Error& error) {
         log.warning(error.what());
         batch::CaseResult failed;
@@ -56,7 +59,8 @@ void add_batch_command(CLI::App& application) {
         rejected.push_back(failed);
       }
     }
-    log.info("batch: " + std::to_string(cases.size()) + " cases, " + std::to_string(arguments->jobs) + " at a time");
+    log.info("batch: " + std::to_string(cases.size()) + " cases, " + std::to_string(arguments->jobs) +
+             " at a time");
     batch::BatchOptions options;
     options.jobs = arguments->jobs;
     options.output_folder = arguments->output_folder;

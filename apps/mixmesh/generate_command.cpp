@@ -27,8 +27,10 @@ void add_generate_command(CLI::App& application) {
       ->check(CLI::ExistingFile);
   command->add_option("--set", arguments->settings,
                       "Override a config value, KEY=VALUE in TOML syntax (repeatable), e.g. march.layers=24");
-  command->add_option("--output-dir", arguments->output_folder, "Folder for the mesh files (default: [output] folder)");
-  command->add_option("--report", arguments->report, "Also write the counts and stage timings as TOML to this file");
+  command->add_option("--output-dir", arguments->output_folder,
+                      "Folder for the mesh files (default: [output] folder)");
+  command->add_option("--report", arguments->report,
+                      "Also write the counts and stage timings as TOML to this file");
   command->add_flag("--quiet", arguments->quiet, "Print only the Table-1 row");
   command->add_option("--dump-stages", arguments->dump_stages,
                       "Write the far-field boundary after each preconditioning transform (boundary.vtk, "

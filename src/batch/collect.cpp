@@ -20,13 +20,16 @@ std::vector<fs::path> expand_pattern(const std::string& pattern) {
   const int status = glob(pattern.c_str(), 0, nullptr, &matches);
   std::vector<fs::path> result;
   if (status == 0)
-    for (std::size_t match = 0; match < matches.gl_pathc; ++match) result.emplace_back(matches.gl_pathv[match]);
+    for (std::size_t match = 0; match < matches.gl_pathc; ++match)
+      result.emplace_back(matches.gl_pathv[match]);
   globfree(&matches);
   if (result.empty()) throw Error(pattern + ": the pattern matches no file");
   return result;
 }
 
-bool is_list_file(const fs::path& path) { return path.extension() == ".txt" || path.extension() == ".list"; }
+bool is_list_file(const fs::path& path) {
+  return path.extension() == ".txt" || path.extension() == ".list";
+}
 
 }  // namespace
 
@@ -47,7 +50,8 @@ std::vector<fs::path> collect_configs(const std::vector<std::string>& inputs) {
       const auto first = line.find_first_not_of(" \t\r");
       if (first == std::string::npos) continue;
       const std::string entry = line.substr(first, line.find_last_not_of(" \t\r") - first + 1);
-      const fs::path path = fs::path(entry).is_absolute() ? fs::path(entry) : fs::path(input).parent_path() / entry;
+      const fs::path path =
+          fs::path(entry).is_absolute() ? fs::path(entry) : fs::path(input).parent_path() / entry;
       try {
         for (const fs::path& match : expand_pattern(path.string())) configs.push_back(match);
       } catch (const Error& error) {

@@ -5,8 +5,8 @@
 
 #include <algorithm>
 #include <cerrno>
-#include <cstdio>
 #include <chrono>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <sstream>
@@ -34,7 +34,8 @@ pid_t start_case(const BatchCase& batch_case, const fs::path& folder, const Batc
     arguments.push_back("--set");
     arguments.push_back(setting);
   }
-  arguments.insert(arguments.end(), {"--output-dir", folder.string(), "--report", (folder / "report.toml").string()});
+  arguments.insert(arguments.end(),
+                   {"--output-dir", folder.string(), "--report", (folder / "report.toml").string()});
   std::vector<char*> argv;
   for (std::string& argument : arguments) argv.push_back(argument.data());
   argv.push_back(nullptr);
@@ -42,7 +43,8 @@ pid_t start_case(const BatchCase& batch_case, const fs::path& folder, const Batc
   const std::string log_path = (folder / "log.txt").string();
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC,
+                                   0644);
   posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
   posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
   pid_t process = 0;
@@ -105,7 +107,8 @@ std::vector<CaseResult> run_batch(const std::vector<BatchCase>& cases, const Bat
     const auto found = running.find(process);
     if (found == running.end()) continue;
     CaseResult& result = results[found->second.index];
-    result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - found->second.start).count();
+    result.seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - found->second.start).count();
     result.peak_memory_kib = usage.ru_maxrss;
     if (WIFEXITED(status)) {
       result.exit_code = WEXITSTATUS(status);
@@ -126,8 +129,8 @@ std::vector<CaseResult> run_batch(const std::vector<BatchCase>& cases, const Bat
 }
 
 void write_summary(const fs::path& path, const std::vector<CaseResult>& results) {
-  const std::vector<std::string> report_columns = {"points", "hexahedra", "prisms", "pyramids", "tetrahedra",
-                                                   "min_scaled_jacobian"};
+  const std::vector<std::string> report_columns = {"points",   "hexahedra",  "prisms",
+                                                   "pyramids", "tetrahedra", "min_scaled_jacobian"};
   write_atomically(path, [&](const fs::path& temporary) {
     std::ofstream csv(temporary);
     csv << "case,status";

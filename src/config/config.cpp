@@ -22,7 +22,9 @@ std::string qualified(const std::string& section, std::string_view key) {
   return section.empty() ? std::string(key) : section + "." + std::string(key);
 }
 
-const toml::table& as_table(const void* table) { return *static_cast<const toml::table*>(table); }
+const toml::table& as_table(const void* table) {
+  return *static_cast<const toml::table*>(table);
+}
 
 std::string position(const std::filesystem::path& file, const toml::source_region& source) {
   if (source.begin.line == 0) return file.string() + " (value set on the command line)";
@@ -37,13 +39,20 @@ std::string format_number(double value) {
 
 std::string type_name(const toml::node& node) {
   switch (node.type()) {
-    case toml::node_type::table: return "a table";
-    case toml::node_type::array: return "an array";
-    case toml::node_type::string: return "a string";
-    case toml::node_type::integer: return "an integer";
-    case toml::node_type::floating_point: return "a number";
-    case toml::node_type::boolean: return "a boolean";
-    default: return "a date or time";
+    case toml::node_type::table:
+      return "a table";
+    case toml::node_type::array:
+      return "an array";
+    case toml::node_type::string:
+      return "a string";
+    case toml::node_type::integer:
+      return "an integer";
+    case toml::node_type::floating_point:
+      return "a number";
+    case toml::node_type::boolean:
+      return "a boolean";
+    default:
+      return "a date or time";
   }
 }
 
@@ -68,7 +77,9 @@ std::string Bounds::describe() const {
 Section::Section(std::shared_ptr<DocumentData> document, const void* table, std::string path)
     : document_(std::move(document)), table_(table), path_(std::move(path)) {}
 
-bool Section::has(std::string_view key) const { return as_table(table_).contains(key); }
+bool Section::has(std::string_view key) const {
+  return as_table(table_).contains(key);
+}
 
 const void* Section::find(std::string_view key) {
   const toml::node* node = as_table(table_).get(key);
@@ -80,9 +91,10 @@ const void* Section::find_scalar(std::string_view key) {
   const auto* node = static_cast<const toml::node*>(find(key));
   if (node == nullptr || !node->is_array() || !document_->discover_sweeps) return node;
   const toml::array& values = *node->as_array();
-  const bool scalars = !values.empty() && std::all_of(values.begin(), values.end(), [&](const toml::node& value) {
-    return value.is_number() ? values.front().is_number() : value.type() == values.front().type();
-  });
+  const bool scalars =
+      !values.empty() && std::all_of(values.begin(), values.end(), [&](const toml::node& value) {
+        return value.is_number() ? values.front().is_number() : value.type() == values.front().type();
+      });
   if (!scalars || values.front().is_array() || values.front().is_table()) return node;
   Sweep sweep{qualified(path_, key), {}};
   for (const toml::node& value : values) {
@@ -143,21 +155,24 @@ void Section::read(std::string_view key, int& value, const Bounds& bounds) {
 void Section::read(std::string_view key, bool& value) {
   const auto* node = static_cast<const toml::node*>(find_scalar(key));
   if (node == nullptr) return;
-  if (!node->is_boolean()) fail(key, "'" + qualified(path_, key) + "' must be true or false, not " + type_name(*node));
+  if (!node->is_boolean())
+    fail(key, "'" + qualified(path_, key) + "' must be true or false, not " + type_name(*node));
   value = node->as_boolean()->get();
 }
 
 void Section::read(std::string_view key, std::string& value) {
   const auto* node = static_cast<const toml::node*>(find_scalar(key));
   if (node == nullptr) return;
-  if (!node->is_string()) fail(key, "'" + qualified(path_, key) + "' must be a string, not " + type_name(*node));
+  if (!node->is_string())
+    fail(key, "'" + qualified(path_, key) + "' must be a string, not " + type_name(*node));
   value = node->as_string()->get();
 }
 
 void Section::read(std::string_view key, std::vector<double>& values, const Bounds& bounds) {
   const auto* node = static_cast<const toml::node*>(find(key));
   if (node == nullptr) return;
-  if (!node->is_array()) fail(key, "'" + qualified(path_, key) + "' must be an array of numbers, not " + type_name(*node));
+  if (!node->is_array())
+    fail(key, "'" + qualified(path_, key) + "' must be an array of numbers, not " + type_name(*node));
   std::vector<double> result;
   for (const toml::node& element : *node->as_array()) {
     if (!element.is_number())
@@ -175,7 +190,8 @@ void Section::read(std::string_view key, std::vector<double>& values, const Boun
 void Section::read(std::string_view key, std::vector<std::string>& values) {
   const auto* node = static_cast<const toml::node*>(find(key));
   if (node == nullptr) return;
-  if (!node->is_array()) fail(key, "'" + qualified(path_, key) + "' must be an array of strings, not " + type_name(*node));
+  if (!node->is_array())
+    fail(key, "'" + qualified(path_, key) + "' must be an array of strings, not " + type_name(*node));
   std::vector<std::string> result;
   for (const toml::node& element : *node->as_array()) {
     if (!element.is_string())
@@ -228,7 +244,8 @@ Section Section::section(std::string_view key) {
 std::optional<Section> Section::optional_section(std::string_view key) {
   const auto* node = static_cast<const toml::node*>(find(key));
   if (node == nullptr) return std::nullopt;
-  if (!node->is_table()) fail(key, "'" + qualified(path_, key) + "' must be a table, not " + type_name(*node));
+  if (!node->is_table())
+    fail(key, "'" + qualified(path_, key) + "' must be a table, not " + type_name(*node));
   return Section(document_, node->as_table(), qualified(path_, key));
 }
 
@@ -237,7 +254,8 @@ std::vector<Section> Section::sections(std::string_view key) {
   const auto* node = static_cast<const toml::node*>(find(key));
   if (node == nullptr) return result;
   if (!node->is_array_of_tables())
-    fail(key, "'" + qualified(path_, key) + "' must be an array of tables ([[" + qualified(path_, key) + "]])");
+    fail(key,
+         "'" + qualified(path_, key) + "' must be an array of tables ([[" + qualified(path_, key) + "]])");
   for (const toml::node& element : *node->as_array())
     result.emplace_back(document_, element.as_table(), qualified(path_, key));
   return result;
@@ -246,8 +264,8 @@ std::vector<Section> Section::sections(std::string_view key) {
 void Section::finish() const {
   for (const auto& [key, node] : as_table(table_)) {
     if (std::find(used_.begin(), used_.end(), key.str()) != used_.end()) continue;
-    throw Error(position(document_->file, key.source()) + ": unknown key '" +
-                qualified(path_, key.str()) + "'");
+    throw Error(position(document_->file, key.source()) + ": unknown key '" + qualified(path_, key.str()) +
+                "'");
   }
 }
 
@@ -298,11 +316,21 @@ void Document::set(std::string_view assignment) {
   parsed.get("value")->visit([&](const auto& value) { table->insert_or_assign(leaf, value); });
 }
 
-void Document::discover_sweeps() { data_->discover_sweeps = true; }
-const std::vector<Sweep>& Document::sweeps() const { return data_->sweeps; }
+void Document::discover_sweeps() {
+  data_->discover_sweeps = true;
+}
+const std::vector<Sweep>& Document::sweeps() const {
+  return data_->sweeps;
+}
 
-Section Document::root() const { return Section(data_, &data_->root, ""); }
-const std::filesystem::path& Document::file() const { return data_->file; }
-std::filesystem::path Document::folder() const { return data_->file.parent_path(); }
+Section Document::root() const {
+  return Section(data_, &data_->root, "");
+}
+const std::filesystem::path& Document::file() const {
+  return data_->file;
+}
+std::filesystem::path Document::folder() const {
+  return data_->file.parent_path();
+}
 
 }  // namespace mixmesh::config

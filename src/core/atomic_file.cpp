@@ -11,9 +11,8 @@ namespace fs = std::filesystem;
 
 void write_atomically(const fs::path& path, const std::function<void(const fs::path&)>& write) {
   std::random_device entropy;
-  const fs::path temporary =
-      path.parent_path() / (".tmp-" + std::to_string(entropy() % 1000000000u) + "-" +
-                            path.filename().string());
+  const fs::path temporary = path.parent_path() / (".tmp-" + std::to_string(entropy() % 1000000000u) + "-" +
+                                                   path.filename().string());
   try {
     write(temporary);
     std::error_code code;

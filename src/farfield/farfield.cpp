@@ -224,7 +224,8 @@ FarFieldResult farfield(const FarFieldInput& input, const FarFieldOptions& optio
   const Vector3 hole_normal = face_area_vector(points, hull[largest].data(), 3).normalized();
   Vector3 hole_centre = Vector3::Zero();
   for (Index node : hull[largest]) hole_centre += points[static_cast<std::size_t>(node)] / 3.0;
-  if (tetgen.holes.empty()) tetgen.holes.push_back(hole_centre - 1e-3 * std::sqrt(largest_area) * hole_normal);
+  if (tetgen.holes.empty())
+    tetgen.holes.push_back(hole_centre - 1e-3 * std::sqrt(largest_area) * hole_normal);
 
   Eigen::Matrix3d forward = Eigen::Matrix3d::Identity(), backward = Eigen::Matrix3d::Identity();
   const bool dump = !options.dump_directory.empty();

@@ -83,7 +83,8 @@ template <typename Result, typename Body>
 Result run_isolated(const std::string& what, Body body) {
   using isolated_detail::Channel;
   int ends[2];
-  if (pipe(ends) != 0) throw Error("farfield: cannot create a pipe for " + what + ": " + std::strerror(errno));
+  if (pipe(ends) != 0)
+    throw Error("farfield: cannot create a pipe for " + what + ": " + std::strerror(errno));
   const pid_t child = fork();
   if (child < 0) {
     close(ends[0]);
@@ -110,8 +111,8 @@ Result run_isolated(const std::string& what, Body body) {
   char tag = 2;
   Result result{};
   std::string message;
-  const bool complete = channel.read_bytes(&tag, 1) &&
-                        (tag == 0 ? receive(channel, result) : receive(channel, message));
+  const bool complete =
+      channel.read_bytes(&tag, 1) && (tag == 0 ? receive(channel, result) : receive(channel, message));
   close(ends[0]);
   int status = 0;
   while (waitpid(child, &status, 0) < 0 && errno == EINTR) {
@@ -120,7 +121,8 @@ Result run_isolated(const std::string& what, Body body) {
   if (complete && tag == 1) throw Error(message);
   if (WIFSIGNALED(status))
     throw Error("farfield: " + what + " crashed (signal " + std::to_string(WTERMSIG(status)) + ")");
-  throw Error("farfield: " + what + " stopped without a result (exit " + std::to_string(WEXITSTATUS(status)) + ")");
+  throw Error("farfield: " + what + " stopped without a result (exit " + std::to_string(WEXITSTATUS(status)) +
+              ")");
 }
 
 }  // namespace mixmesh::farfield_parts

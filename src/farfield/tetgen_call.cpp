@@ -103,11 +103,16 @@ TetgenOutput tetrahedralise(const TetgenInput& input) {
     run(switches.str(), in, out);
   } catch (int code) {
     switch (code) {
-      case 1: throw Error("farfield: TetGen ran out of memory");
-      case 3: throw Error("farfield: the boundary intersects itself");
-      case 4: throw Error("farfield: the boundary has a feature too small for TetGen's tolerance");
-      case 5: throw Error("farfield: two boundary triangles are too close");
-      default: throw Error("farfield: TetGen failed (code " + std::to_string(code) + ")");
+      case 1:
+        throw Error("farfield: TetGen ran out of memory");
+      case 3:
+        throw Error("farfield: the boundary intersects itself");
+      case 4:
+        throw Error("farfield: the boundary has a feature too small for TetGen's tolerance");
+      case 5:
+        throw Error("farfield: two boundary triangles are too close");
+      default:
+        throw Error("farfield: TetGen failed (code " + std::to_string(code) + ")");
     }
   }
 
@@ -136,7 +141,8 @@ TetgenOutput tetrahedralise(const TetgenInput& input) {
 void send(isolated_detail::Channel& channel, const TetgenOutput& output) {
   std::vector<double> coordinates;
   coordinates.reserve(3 * output.points.size());
-  for (const Vector3& point : output.points) coordinates.insert(coordinates.end(), {point.x(), point.y(), point.z()});
+  for (const Vector3& point : output.points)
+    coordinates.insert(coordinates.end(), {point.x(), point.y(), point.z()});
   channel.write_vector(coordinates);
   channel.write_vector(output.tetrahedra);
 }
@@ -146,7 +152,8 @@ bool receive(isolated_detail::Channel& channel, TetgenOutput& output) {
   if (!channel.read_vector(coordinates) || !channel.read_vector(output.tetrahedra)) return false;
   output.points.resize(coordinates.size() / 3);
   for (std::size_t point = 0; point < output.points.size(); ++point)
-    output.points[point] = Vector3(coordinates[3 * point], coordinates[3 * point + 1], coordinates[3 * point + 2]);
+    output.points[point] =
+        Vector3(coordinates[3 * point], coordinates[3 * point + 1], coordinates[3 * point + 2]);
   return true;
 }
 
@@ -161,8 +168,8 @@ TetgenOutput run_tetgen(const TetgenInput& input) {
     // the cause to report, whatever the failure looked like.
     std::string intersections;
     try {
-      intersections =
-          run_isolated<std::string>("TetGen's intersection test", [&] { return intersection_location(input); });
+      intersections = run_isolated<std::string>("TetGen's intersection test",
+                                                [&] { return intersection_location(input); });
     } catch (const Error&) {
     }
     if (!intersections.empty()) throw Error("farfield: the boundary intersects itself" + intersections);

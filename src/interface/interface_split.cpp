@@ -87,8 +87,8 @@ namespace {
 // tetrahedra on every outer quad (along its chosen diagonal), one on every triangle.
 // visit(CellType, nodes, is_hull_triangle) with the apex as node index `apex_index`.
 template <typename Visit>
-void for_each_piece(CellType type, const std::vector<Vector3>& points, const Index* nodes, unsigned outer_faces,
-                    const InterfaceOptions& options, Index apex_index, Visit visit) {
+void for_each_piece(CellType type, const std::vector<Vector3>& points, const Index* nodes,
+                    unsigned outer_faces, const InterfaceOptions& options, Index apex_index, Visit visit) {
   const CellDescriptor& shape = descriptor(type);
   for (int face = 0; face < shape.face_count; ++face) {
     const LocalFace& local = shape.faces[static_cast<std::size_t>(face)];
@@ -118,14 +118,15 @@ void for_each_piece(CellType type, const std::vector<Vector3>& points, const Ind
 
 // The worst piece of a split about the last point of `points`: the smallest corner
 // Jacobian (scaled), negative when a piece is inverted or tangled.
-double worst_piece(CellType type, const std::vector<Vector3>& points, const Index* nodes, unsigned outer_faces,
-                   const InterfaceOptions& options) {
+double worst_piece(CellType type, const std::vector<Vector3>& points, const Index* nodes,
+                   unsigned outer_faces, const InterfaceOptions& options) {
   double worst = 1.0;
   const Index apex = static_cast<Index>(points.size() - 1);
-  for_each_piece(type, points, nodes, outer_faces, options, apex, [&](CellType piece, const Index* corners, bool) {
-    const CellShape shape = cell_shape(piece, points, corners);
-    worst = std::min(worst, shape.valid() ? shape.min_corner_jacobian : -1.0 - shape.negative_corners);
-  });
+  for_each_piece(
+      type, points, nodes, outer_faces, options, apex, [&](CellType piece, const Index* corners, bool) {
+        const CellShape shape = cell_shape(piece, points, corners);
+        worst = std::min(worst, shape.valid() ? shape.min_corner_jacobian : -1.0 - shape.negative_corners);
+      });
   return worst;
 }
 
@@ -141,8 +142,8 @@ Vector3 split_point(CellType type, std::vector<Vector3>& points, const Index* no
   for (int corner = 0; corner < node_count(type); ++corner)
     step = std::max(step, (points[static_cast<std::size_t>(nodes[corner])] - best).norm());
   step *= 0.25;
-  const Vector3 directions[6] = {Vector3::UnitX(), -Vector3::UnitX(), Vector3::UnitY(),
-                                 -Vector3::UnitY(), Vector3::UnitZ(), -Vector3::UnitZ()};
+  const Vector3 directions[6] = {Vector3::UnitX(),  -Vector3::UnitX(), Vector3::UnitY(),
+                                 -Vector3::UnitY(), Vector3::UnitZ(),  -Vector3::UnitZ()};
   for (int iteration = 0; iteration < 60 && best_worst < options.centre_quality; ++iteration) {
     bool improved = false;
     for (const Vector3& direction : directions) {
@@ -173,8 +174,9 @@ void split_cell(CellType type, std::size_t cell, const Index* nodes, unsigned ou
   for_each_piece(type, out.points, nodes, outer_faces, options, centre,
                  [&](CellType piece, const Index* corners, bool outer) {
                    if (!cell_shape(piece, out.points, corners).valid())
-                     throw Error("interface: splitting " + std::string(name(type)) + " " + std::to_string(cell) +
-                                 " near " + point_text(point) + " gives an inverted " + std::string(name(piece)));
+                     throw Error("interface: splitting " + std::string(name(type)) + " " +
+                                 std::to_string(cell) + " near " + point_text(point) + " gives an inverted " +
+                                 std::string(name(piece)));
                    out.add_cell(piece, corners, region);
                    if (piece == CellType::pyramid) {
                      ++result.pyramids;

@@ -33,8 +33,8 @@ CellShape cell_shape(CellType type, const std::vector<Vector3>& points, const In
     // Outward faces: the tetrahedron (a, b, c, centre) is positive when the face is
     // seen counter-clockwise from outside, so the sign is flipped.
     if (local.node_count == 3) {
-      const double part = -tetrahedron_volume6(at(local.nodes[0]), at(local.nodes[1]),
-                                               at(local.nodes[2]), centre);
+      const double part =
+          -tetrahedron_volume6(at(local.nodes[0]), at(local.nodes[1]), at(local.nodes[2]), centre);
       volume6 += part;
       shape.negative_subtetrahedra += part <= 0.0;
       continue;
@@ -42,8 +42,8 @@ CellShape cell_shape(CellType type, const std::vector<Vector3>& points, const In
     const Vector3 face_centre =
         0.25 * (at(local.nodes[0]) + at(local.nodes[1]) + at(local.nodes[2]) + at(local.nodes[3]));
     for (int corner = 0; corner < 4; ++corner) {
-      const double part = -tetrahedron_volume6(at(local.nodes[corner]),
-                                               at(local.nodes[(corner + 1) % 4]), face_centre, centre);
+      const double part = -tetrahedron_volume6(at(local.nodes[corner]), at(local.nodes[(corner + 1) % 4]),
+                                               face_centre, centre);
       volume6 += part;
       shape.negative_subtetrahedra += part <= 0.0;
     }

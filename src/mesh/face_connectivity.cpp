@@ -57,8 +57,10 @@ FaceConnectivity match_faces(const MixedMesh& mesh) {
         for (int face = 0; face < cell.face_count; ++face) {
           const LocalFace& local = cell.faces[face];
           Index corners[4] = {-1, -1, -1, -1};
-          for (int corner = 0; corner < local.node_count; ++corner) corners[corner] = nodes[local.nodes[corner]];
-          visit(sorted_face_key(corners, local.node_count), CellFace{type, static_cast<Index>(index_in_block), face});
+          for (int corner = 0; corner < local.node_count; ++corner)
+            corners[corner] = nodes[local.nodes[corner]];
+          visit(sorted_face_key(corners, local.node_count),
+                CellFace{type, static_cast<Index>(index_in_block), face});
         }
       }
     }
@@ -158,7 +160,9 @@ FaceConnectivity match_faces(const MixedMesh& mesh) {
       if (candidates == quads_by_node.end()) continue;
       for (std::size_t quad : candidates->second) {
         const auto& corners = quad_keys[quad];
-        auto holds = [&](Index node) { return std::find(corners.begin(), corners.end(), node) != corners.end(); };
+        auto holds = [&](Index node) {
+          return std::find(corners.begin(), corners.end(), node) != corners.end();
+        };
         if (holds(key[1]) && holds(key[2])) {
           ++result.triangles_in_quads;
           break;

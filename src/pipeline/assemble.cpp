@@ -26,9 +26,13 @@ OuterLayer outer_layer(const MixedMesh& layers, const std::vector<std::string>& 
     const int count = face_nodes(layers, face, nodes);
     if (!std::binary_search(hull_keys.begin(), hull_keys.end(), sorted_face_key(nodes, count))) continue;
     const OuterCell outer{static_cast<std::size_t>(face.cell), face.local_face};
-    if (face.type == CellType::hexahedron) layer.hexahedra.push_back(outer);
-    else if (face.type == CellType::prism) layer.prisms.push_back(outer);
-    else throw Error("generate: a " + std::string(name(face.type)) + " of the boundary layers faces the far field");
+    if (face.type == CellType::hexahedron)
+      layer.hexahedra.push_back(outer);
+    else if (face.type == CellType::prism)
+      layer.prisms.push_back(outer);
+    else
+      throw Error("generate: a " + std::string(name(face.type)) +
+                  " of the boundary layers faces the far field");
   }
   return layer;
 }
@@ -45,7 +49,8 @@ MixedMesh assemble(const MixedMesh& layers, const std::string& hull_marker, cons
     mesh.block(type) = layers.block(type);
     const CellBlock& added = farfield.mesh.block(type);
     mesh.block(type).nodes.insert(mesh.block(type).nodes.end(), added.nodes.begin(), added.nodes.end());
-    mesh.block(type).regions.insert(mesh.block(type).regions.end(), added.regions.begin(), added.regions.end());
+    mesh.block(type).regions.insert(mesh.block(type).regions.end(), added.regions.begin(),
+                                    added.regions.end());
   }
   auto marker_for = [&](const std::string& original) {
     const bool wall = std::find(wall_markers.begin(), wall_markers.end(), original) != wall_markers.end();
@@ -53,13 +58,15 @@ MixedMesh assemble(const MixedMesh& layers, const std::string& hull_marker, cons
   };
   for (FaceType type : all_face_types) {
     for (std::size_t face = 0; face < layers.face_count(type); ++face) {
-      const std::string& marker = layers.marker_names[static_cast<std::size_t>(layers.faces(type).markers[face])];
+      const std::string& marker =
+          layers.marker_names[static_cast<std::size_t>(layers.faces(type).markers[face])];
       if (marker == hull_marker) continue;  // interior now: tetrahedra on the other side
       mesh.add_face(type, layers.face(type, face), marker_for(marker));
     }
     for (std::size_t face = 0; face < farfield.mesh.face_count(type); ++face) {
       const int id = farfield.mesh.faces(type).markers[face];
-      mesh.add_face(type, farfield.mesh.face(type, face), marker_for(farfield.mesh.marker_names[static_cast<std::size_t>(id)]));
+      mesh.add_face(type, farfield.mesh.face(type, face),
+                    marker_for(farfield.mesh.marker_names[static_cast<std::size_t>(id)]));
     }
   }
   return mesh;

@@ -94,17 +94,20 @@ GenerateResult generate(const GenerateOptions& options, const Log& log) {
   return result;
 }
 
-GenerateResult generate_from_surface(const SurfaceMesh& surface, const GenerateOptions& options, const Log& log) {
+GenerateResult generate_from_surface(const SurfaceMesh& surface, const GenerateOptions& options,
+                                     const Log& log) {
   Stopwatch total;
   GenerateResult result;
   GenerateReport& report = result.report;
   report.surface_elements = to_mixed_mesh(surface).face_count();
 
-  BoundaryLayer layers = run_stage("march", report, [&] { return march_layers(surface, options.march, nullptr); });
+  BoundaryLayer layers =
+      run_stage("march", report, [&] { return march_layers(surface, options.march, nullptr); });
   report.march = layers.report;
   log.info("march: " + seconds_text(report.stages.back().seconds) + ", " +
-           std::to_string(layers.report.layers_completed) + "/" + std::to_string(layers.report.layers_requested) +
-           " layers, " + std::to_string(layers.mesh.cell_count(CellType::hexahedron)) + " hexahedra, " +
+           std::to_string(layers.report.layers_completed) + "/" +
+           std::to_string(layers.report.layers_requested) + " layers, " +
+           std::to_string(layers.mesh.cell_count(CellType::hexahedron)) + " hexahedra, " +
            std::to_string(layers.mesh.cell_count(CellType::prism)) + " prisms, first spacing " +
            std::to_string(layers.report.first_spacing) + " m, thickness " +
            std::to_string(layers.report.total_thickness) + " m");
@@ -117,9 +120,9 @@ GenerateResult generate_from_surface(const SurfaceMesh& surface, const GenerateO
         layers.mesh, {options.march.outer_hull_marker, options.march.hull_side_marker});
     return split_interface(layers.mesh, outer, options.interface);
   });
-  log.info("interface: " + seconds_text(report.stages.back().seconds) + ", " + std::to_string(interface.pyramids) +
-           " pyramids, " + std::to_string(interface.tetrahedra) + " tetrahedra, hull of " +
-           std::to_string(interface.hull.size()) + " triangles");
+  log.info("interface: " + seconds_text(report.stages.back().seconds) + ", " +
+           std::to_string(interface.pyramids) + " pyramids, " + std::to_string(interface.tetrahedra) +
+           " tetrahedra, hull of " + std::to_string(interface.hull.size()) + " triangles");
 
   FarFieldInput farfield_input;
   if (options.farfield.sizing == FarFieldSizing::anisotropic) {
@@ -133,7 +136,8 @@ GenerateResult generate_from_surface(const SurfaceMesh& surface, const GenerateO
       std::vector<Index> layer_nodes, added_nodes;
       for (Index node : hull_nodes) (node < layer_points ? layer_nodes : added_nodes).push_back(node);
       farfield_input.metric_nodes = layer_nodes;
-      farfield_input.metric_nodes.insert(farfield_input.metric_nodes.end(), added_nodes.begin(), added_nodes.end());
+      farfield_input.metric_nodes.insert(farfield_input.metric_nodes.end(), added_nodes.begin(),
+                                         added_nodes.end());
       farfield_input.metrics = node_metrics(layers.mesh, layer_nodes);
       const std::vector<Matrix3> added_metrics = node_metrics(interface.mesh, added_nodes);
       farfield_input.metrics.insert(farfield_input.metrics.end(), added_metrics.begin(), added_metrics.end());
@@ -151,12 +155,12 @@ GenerateResult generate_from_surface(const SurfaceMesh& surface, const GenerateO
   // includes the wake.
   if (farfield_options.reference_chord <= 0.0 && options.surface.wing)
     farfield_options.reference_chord = options.surface.wing->stations.front().chord;
-  FarFieldResult farfield_result = run_stage("farfield", report, [&] {
-    return farfield(farfield_input, farfield_options, log);
-  });
+  FarFieldResult farfield_result =
+      run_stage("farfield", report, [&] { return farfield(farfield_input, farfield_options, log); });
   log.info("farfield: " + seconds_text(report.stages.back().seconds) + ", " +
            std::to_string(farfield_result.mesh.cell_count(CellType::tetrahedron)) + " tetrahedra, " +
-           std::to_string(farfield_result.mesh.points.size() - farfield_result.input_point_count) + " new points");
+           std::to_string(farfield_result.mesh.points.size() - farfield_result.input_point_count) +
+           " new points");
 
   result.mesh = run_stage("assemble", report, [&] {
     return pipeline_detail::assemble(interface.mesh, options.interface.hull_marker, farfield_result,
@@ -206,8 +210,8 @@ std::vector<std::filesystem::path> write_outputs(const GenerateResult& result, c
 std::string table_row(const GenerateReport& report) {
   std::ostringstream row;
   row << "points " << report.points << "  surface elements " << report.surface_elements << "  hexahedra "
-      << report.hexahedra << "  tetrahedra " << report.tetrahedra << "  prisms " << report.prisms << "  pyramids "
-      << report.pyramids;
+      << report.hexahedra << "  tetrahedra " << report.tetrahedra << "  prisms " << report.prisms
+      << "  pyramids " << report.pyramids;
   return row.str();
 }
 
@@ -218,8 +222,9 @@ void write_report(const std::filesystem::path& path, const GenerateReport& repor
          << "points = " << report.points << "\nsurface_elements = " << report.surface_elements
          << "\nhexahedra = " << report.hexahedra << "\ntetrahedra = " << report.tetrahedra
          << "\nprisms = " << report.prisms << "\npyramids = " << report.pyramids
-         << "\nmin_scaled_jacobian = " << report.min_scaled_jacobian << "\nlayers_completed = "
-         << report.march.layers_completed << "\nstopped_faces = " << report.march.stopped_faces
+         << "\nmin_scaled_jacobian = " << report.min_scaled_jacobian
+         << "\nlayers_completed = " << report.march.layers_completed
+         << "\nstopped_faces = " << report.march.stopped_faces
          << "\nhull_metric_edges_within_range = " << report.farfield_summary.hull_lengths.within_range
          << "\nseconds = " << report.seconds << "\n\n[stages]\n";
     for (const StageTiming& stage : report.stages) file << stage.stage << " = " << stage.seconds << "\n";

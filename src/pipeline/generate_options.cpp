@@ -92,12 +92,13 @@ FarFieldOptions read_farfield_options(config::Section& table) {
   table.read("layer_growth", options.layer_growth, Bounds::at_least(1.0));
   table.read("maximum_layers", options.maximum_layers, Bounds::at_least(0));
   table.read("precondition", options.precondition);
-  if (table.has("sweep")) table.read("sweep", options.preconditioning.sweep_degrees, Bounds::between(-80, 80));
+  if (table.has("sweep"))
+    table.read("sweep", options.preconditioning.sweep_degrees, Bounds::between(-80, 80));
   std::string affine = "whitening";
   table.read_choice("affine", affine, {"whitening", "inverse", "none"});
-  options.preconditioning.affine = affine == "inverse"  ? AffineMap::inverse
-                                   : affine == "none"   ? AffineMap::none
-                                                        : AffineMap::whitening;
+  options.preconditioning.affine = affine == "inverse" ? AffineMap::inverse
+                                   : affine == "none"  ? AffineMap::none
+                                                       : AffineMap::whitening;
   table.finish();
   return options;
 }

@@ -24,8 +24,7 @@ inline MixedMesh single_cell(CellType type) {
       mesh.points = {{0, 0, 0}, {0, 1, 0}, {1, 0, 0}, {0, 0, 1}, {0, 1, 1}, {1, 0, 1}};
       break;
     case CellType::hexahedron:
-      mesh.points = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
-                     {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+      mesh.points = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
       break;
   }
   std::vector<Index> nodes(static_cast<std::size_t>(node_count(type)));
@@ -44,10 +43,20 @@ inline void orient_positively(MixedMesh& mesh) {
       if (signed_volume(type, mesh.points, &nodes[first]) > 0) continue;
       Index* cell = &nodes[first];
       switch (type) {
-        case CellType::tetrahedron: std::swap(cell[1], cell[2]); break;
-        case CellType::pyramid: std::swap(cell[1], cell[3]); break;
-        case CellType::prism: std::swap(cell[1], cell[2]); std::swap(cell[4], cell[5]); break;
-        case CellType::hexahedron: std::swap(cell[1], cell[3]); std::swap(cell[5], cell[7]); break;
+        case CellType::tetrahedron:
+          std::swap(cell[1], cell[2]);
+          break;
+        case CellType::pyramid:
+          std::swap(cell[1], cell[3]);
+          break;
+        case CellType::prism:
+          std::swap(cell[1], cell[2]);
+          std::swap(cell[4], cell[5]);
+          break;
+        case CellType::hexahedron:
+          std::swap(cell[1], cell[3]);
+          std::swap(cell[5], cell[7]);
+          break;
       }
     }
   }
@@ -77,8 +86,8 @@ inline void tag_boundary(MixedMesh& mesh) {
 // Boundary faces: "wall" at z = 0, "farfield" elsewhere.
 inline MixedMesh four_type_mesh() {
   MixedMesh mesh;
-  mesh.points = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1},
-                 {0, 1, 1}, {0.5, 0.5, 1.5}, {0.5, -0.5, 1.5}};
+  mesh.points = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},       {0, 0, 1},
+                 {1, 0, 1}, {1, 1, 1}, {0, 1, 1}, {0.5, 0.5, 1.5}, {0.5, -0.5, 1.5}};
   const Vector3 offset = Vector3(0, -1, -1).normalized() * 0.5;
   for (Index node : {4, 5, 9}) mesh.points.push_back(mesh.points[static_cast<std::size_t>(node)] + offset);
   const Index hexahedron[8] = {0, 1, 2, 3, 4, 5, 6, 7};

@@ -17,7 +17,9 @@ fs::path scratch(const std::string& name) {
   return folder;
 }
 
-void write(const fs::path& path, const std::string& text) { std::ofstream(path) << text; }
+void write(const fs::path& path, const std::string& text) {
+  std::ofstream(path) << text;
+}
 
 }  // namespace
 
@@ -28,7 +30,8 @@ TEST(Batch, SweepsExpandToTheProductWithReadableNames) {
   ASSERT_EQ(cases.size(), 6u);
   EXPECT_EQ(cases[0].name, "wing__leading_edge_sweep-0__taper-0.3");
   EXPECT_EQ(cases[5].name, "wing__leading_edge_sweep-30__taper-1.0");
-  EXPECT_EQ(cases[5].settings, (std::vector<std::string>{"planform.leading_edge_sweep=30", "planform.taper=1.0"}));
+  EXPECT_EQ(cases[5].settings,
+            (std::vector<std::string>{"planform.leading_edge_sweep=30", "planform.taper=1.0"}));
   EXPECT_EQ(batch::expand_sweeps("a/b.toml", {}).front().name, "b");
 }
 
@@ -88,7 +91,9 @@ TEST(Batch, FailingAndCrashingCasesDoNotStopTheOthers) {
   batch::write_summary(folder / "summary.csv", results);
   std::ifstream summary(folder / "summary.csv");
   std::getline(summary, line);
-  EXPECT_EQ(line, "case,status,points,hexahedra,prisms,pyramids,tetrahedra,min_scaled_jacobian,seconds,peak_memory_mib");
+  EXPECT_EQ(
+      line,
+      "case,status,points,hexahedra,prisms,pyramids,tetrahedra,min_scaled_jacobian,seconds,peak_memory_mib");
   std::getline(summary, line);
   EXPECT_EQ(line.rfind("good0,ok,42,,,,,,", 0), 0u) << line;
 }

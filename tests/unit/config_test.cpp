@@ -100,7 +100,8 @@ TEST(Config, MissingSectionAndSyntaxErrorsAreReported) {
 }
 
 TEST(Config, ArraysOfTablesAreReadInOrder) {
-  const Document document = Document::parse("[[station]]\ny = 0\n[[station]]\ny = 1.5\nchord = 2\n", "s.toml");
+  const Document document =
+      Document::parse("[[station]]\ny = 0\n[[station]]\ny = 1.5\nchord = 2\n", "s.toml");
   config::Section root = document.root();
   std::vector<double> positions;
   for (config::Section station : root.sections("station")) {
@@ -147,7 +148,8 @@ TEST(Config, SetReplacesAndCreatesValues) {
 
 TEST(Config, SweepDiscoveryListsScalarOptionsGivenAsArrays) {
   Document document = Document::parse(
-      "[wing]\nroot_chord = [1, 2.5]\nsections = [3, 4]\ntwist = [0, 1]\ndistribution = ['uniform', 'tanh']\n",
+      "[wing]\nroot_chord = [1, 2.5]\nsections = [3, 4]\ntwist = [0, 1]\ndistribution = ['uniform', "
+      "'tanh']\n",
       "w.toml");
   EXPECT_NE(error_of([&] { read_wing(document); }), "");  // an array where a number belongs
   document.discover_sweeps();

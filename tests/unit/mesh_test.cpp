@@ -60,8 +60,9 @@ TEST_P(EveryCellType, FaceNormalsPointOutOfTheReferenceCell) {
 }
 
 TEST(CellGeometry, ReferenceVolumesAreExact) {
-  for (auto [type, volume] : {std::pair{CellType::tetrahedron, 1.0 / 6.0}, std::pair{CellType::pyramid, 1.0 / 3.0},
-                              std::pair{CellType::prism, 0.5}, std::pair{CellType::hexahedron, 1.0}}) {
+  for (auto [type, volume] :
+       {std::pair{CellType::tetrahedron, 1.0 / 6.0}, std::pair{CellType::pyramid, 1.0 / 3.0},
+        std::pair{CellType::prism, 0.5}, std::pair{CellType::hexahedron, 1.0}}) {
     const MixedMesh mesh = reference::single_cell(type);
     const CellShape shape = cell_shape(type, mesh.points, mesh.cell(type, 0));
     EXPECT_NEAR(shape.volume, volume, 1e-15) << name(type);
@@ -156,7 +157,8 @@ TEST(MixedMesh, CompactionRemovesUnusedPointsAndRenumbers) {
   EXPECT_EQ(renumber[3], -1);
   EXPECT_EQ(mesh.block(CellType::tetrahedron).nodes, (std::vector<Index>{0, 1, 2, 3}));
   EXPECT_EQ(mesh.faces(FaceType::triangle).nodes, (std::vector<Index>{0, 2, 1}));
-  EXPECT_NEAR(signed_volume(CellType::tetrahedron, mesh.points, mesh.cell(CellType::tetrahedron, 0)), 1.0 / 6.0, 1e-15);
+  EXPECT_NEAR(signed_volume(CellType::tetrahedron, mesh.points, mesh.cell(CellType::tetrahedron, 0)),
+              1.0 / 6.0, 1e-15);
 }
 
 TEST(MixedMesh, MarkersAreFoundOrAdded) {

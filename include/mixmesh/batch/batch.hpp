@@ -18,9 +18,9 @@
 namespace mixmesh::batch {
 
 struct BatchCase {
-  std::string name;                    // readable, unique: stem plus swept values
+  std::string name;  // readable, unique: stem plus swept values
   std::filesystem::path config;
-  std::vector<std::string> settings;   // KEY=VALUE for Document::set
+  std::vector<std::string> settings;  // KEY=VALUE for Document::set
 };
 
 // Config paths from the command line: files, glob patterns ("cases/*.toml") and list
@@ -30,17 +30,18 @@ std::vector<std::filesystem::path> collect_configs(const std::vector<std::string
 
 // One case per combination of the sweeps' values (their Cartesian product), named
 // "STEM__KEY-VALUE__KEY-VALUE" with the last component of each key.
-std::vector<BatchCase> expand_sweeps(const std::filesystem::path& config, const std::vector<config::Sweep>& sweeps);
+std::vector<BatchCase> expand_sweeps(const std::filesystem::path& config,
+                                     const std::vector<config::Sweep>& sweeps);
 
 struct BatchOptions {
   int jobs = 1;
   std::filesystem::path output_folder = "batch";
-  std::vector<std::string> command;    // program and subcommand, e.g. {"/usr/bin/mixmesh", "generate"}
+  std::vector<std::string> command;  // program and subcommand, e.g. {"/usr/bin/mixmesh", "generate"}
 };
 
 struct CaseResult {
   std::string name;
-  std::string status;                  // "ok", or "failed (exit N)" / "failed (signal N)"
+  std::string status;  // "ok", or "failed (exit N)" / "failed (signal N)"
   int exit_code = 0;
   double seconds = 0.0;
   long peak_memory_kib = 0;

@@ -65,7 +65,7 @@ class Section {
   void require(std::string_view key, std::string& value);
 
   // Sub-tables: [wing.planform] or wing = { ... }.
-  Section section(std::string_view key);                  // required
+  Section section(std::string_view key);  // required
   std::optional<Section> optional_section(std::string_view key);
   // Arrays of tables: [[station]] entries in order.
   std::vector<Section> sections(std::string_view key);

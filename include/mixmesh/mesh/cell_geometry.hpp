@@ -18,9 +18,7 @@ struct CellShape {
   int negative_subtetrahedra = 0;
   int negative_corners = 0;
 
-  bool valid() const {
-    return volume > 0.0 && negative_subtetrahedra == 0 && negative_corners == 0;
-  }
+  bool valid() const { return volume > 0.0 && negative_subtetrahedra == 0 && negative_corners == 0; }
 };
 
 // nodes: node_count(type) indices into points.
@@ -29,8 +27,7 @@ CellShape cell_shape(CellType type, const std::vector<Vector3>& points, const In
 double signed_volume(CellType type, const std::vector<Vector3>& points, const Index* nodes);
 
 // Six times the signed volume of tetrahedron (a, b, c, d).
-inline double tetrahedron_volume6(const Vector3& a, const Vector3& b, const Vector3& c,
-                                  const Vector3& d) {
+inline double tetrahedron_volume6(const Vector3& a, const Vector3& b, const Vector3& c, const Vector3& d) {
   return (b - a).cross(c - a).dot(d - a);
 }
 

@@ -18,8 +18,8 @@ struct CellFace {
 
 struct FaceConnectivity {
   std::vector<std::array<CellFace, 2>> interior;
-  std::vector<CellFace> boundary;             // on exactly one cell
-  std::vector<CellFace> shared_by_many;       // faces on three or more cells
+  std::vector<CellFace> boundary;                         // on exactly one cell
+  std::vector<CellFace> shared_by_many;                   // faces on three or more cells
   std::vector<std::array<CellFace, 2>> same_orientation;  // two cells, same winding
   // Boundary cell faces with no tagged boundary face of the same nodes.
   std::vector<CellFace> untagged_boundary;

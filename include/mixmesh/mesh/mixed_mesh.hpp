@@ -28,17 +28,17 @@ using Index = std::int32_t;
 using Vector3 = Eigen::Vector3d;
 
 struct CellBlock {
-  std::vector<Index> nodes;   // stride = node_count(type)
-  std::vector<int> regions;   // one tag per cell
+  std::vector<Index> nodes;  // stride = node_count(type)
+  std::vector<int> regions;  // one tag per cell
 };
 
 struct FaceBlock {
-  std::vector<Index> nodes;   // stride = node_count(type)
-  std::vector<int> markers;   // index into MixedMesh::marker_names
+  std::vector<Index> nodes;  // stride = node_count(type)
+  std::vector<int> markers;  // index into MixedMesh::marker_names
 };
 
 struct EdgeBlock {
-  std::vector<Index> nodes;   // 2 per edge
+  std::vector<Index> nodes;  // 2 per edge
   std::vector<int> markers;
 };
 
@@ -50,7 +50,9 @@ struct MixedMesh {
   std::array<FaceBlock, 2> planar_cells;  // planar meshes only
   EdgeBlock boundary_edges;               // planar meshes only
 
-  bool planar() const { return cell_count() == 0 && !(planar_cells[0].nodes.empty() && planar_cells[1].nodes.empty()); }
+  bool planar() const {
+    return cell_count() == 0 && !(planar_cells[0].nodes.empty() && planar_cells[1].nodes.empty());
+  }
 
   CellBlock& block(CellType type) { return cells[index(type)]; }
   const CellBlock& block(CellType type) const { return cells[index(type)]; }
@@ -64,9 +66,7 @@ struct MixedMesh {
   std::size_t face_count(FaceType type) const {
     return faces(type).nodes.size() / static_cast<std::size_t>(node_count(type));
   }
-  std::size_t face_count() const {
-    return face_count(FaceType::triangle) + face_count(FaceType::quad);
-  }
+  std::size_t face_count() const { return face_count(FaceType::triangle) + face_count(FaceType::quad); }
 
   const Index* cell(CellType type, std::size_t cell_index) const {
     return block(type).nodes.data() + cell_index * static_cast<std::size_t>(node_count(type));

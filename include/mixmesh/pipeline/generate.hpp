@@ -24,8 +24,8 @@
 namespace mixmesh {
 
 struct OutputOptions {
-  std::filesystem::path folder = ".";       // --output-dir overrides
-  std::string name;                         // file stem; default: the config's stem
+  std::filesystem::path folder = ".";          // --output-dir overrides
+  std::string name;                            // file stem; default: the config's stem
   std::vector<std::string> formats = {"vtu"};  // vtu, su2, cgns, msh
   // true: one "wall" marker for every wall patch (wing_upper, wing_lower, tip);
   // false: keep the patch names.
@@ -52,14 +52,14 @@ struct StageTiming {
 // Wild Table 1's row plus what a user checks first.
 struct GenerateReport {
   std::size_t points = 0;
-  std::size_t surface_elements = 0;   // wall faces (wing, tip) and wake faces
+  std::size_t surface_elements = 0;  // wall faces (wing, tip) and wake faces
   std::size_t hexahedra = 0;
   std::size_t tetrahedra = 0;
   std::size_t prisms = 0;
   std::size_t pyramids = 0;
   double min_scaled_jacobian = 0.0;
   MarchReport march;
-  FarFieldResult farfield_summary;    // counts and hull metric lengths (mesh emptied)
+  FarFieldResult farfield_summary;  // counts and hull metric lengths (mesh emptied)
   std::vector<StageTiming> stages;
   double seconds = 0.0;
 };
@@ -77,7 +77,8 @@ GenerateResult generate(const GenerateOptions& options, const Log& log);
 // The stages after the surface, on a given surface mesh (the hybrid baseline of
 // `mixmesh compare` marches an all-triangle surface this way). options.surface is
 // not used.
-GenerateResult generate_from_surface(const SurfaceMesh& surface, const GenerateOptions& options, const Log& log);
+GenerateResult generate_from_surface(const SurfaceMesh& surface, const GenerateOptions& options,
+                                     const Log& log);
 
 // The files of options.formats in options.folder, each written atomically. Returns
 // the paths written. Throws, writing nothing, when the mesh is invalid.

@@ -26,13 +26,15 @@ enum class PatchRole { wall, wake };
 struct StructuredPatch {
   std::string name;
   PatchRole role = PatchRole::wall;
-  int ni = 0;                  // nodes in i
-  int nj = 0;                  // nodes in j
-  std::vector<Index> nodes;    // ni * nj point indices, i fastest
+  int ni = 0;                // nodes in i
+  int nj = 0;                // nodes in j
+  std::vector<Index> nodes;  // ni * nj point indices, i fastest
   // Wing patches: the i of the leading edge; faces with i below it are the lower
   // surface (marker <name>_lower), the others the upper one. -1 for other patches.
   int leading_edge_i = -1;
-  Index node(int i, int j) const { return nodes[static_cast<std::size_t>(j) * static_cast<std::size_t>(ni) + static_cast<std::size_t>(i)]; }
+  Index node(int i, int j) const {
+    return nodes[static_cast<std::size_t>(j) * static_cast<std::size_t>(ni) + static_cast<std::size_t>(i)];
+  }
 };
 
 struct TrianglePatch {
