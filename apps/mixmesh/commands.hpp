@@ -10,10 +10,11 @@ namespace mixmesh::cli {
 // add_NAME_command declarations go here, one per subcommand.
 void add_batch_command(CLI::App& application);
 void add_generate_command(CLI::App& application);
+void add_convert_command(CLI::App& application);
+void add_check_command(CLI::App& application);
+void add_surface_command(CLI::App& application);
 void add_deform_command(CLI::App& application);
 void add_march_command(CLI::App& application);
-void add_surface_command(CLI::App& application);
-void add_check_command(CLI::App& application);
-void add_convert_command(CLI::App& application);
+void add_compare_command(CLI::App& application);
 
 }  // namespace mixmesh::cli

@@ -13,11 +13,12 @@ int main(int argument_count, char** arguments) {
   // One line per subcommand (commands.hpp).
   mixmesh::cli::add_batch_command(application);
   mixmesh::cli::add_generate_command(application);
+  mixmesh::cli::add_convert_command(application);
+  mixmesh::cli::add_check_command(application);
+  mixmesh::cli::add_surface_command(application);
   mixmesh::cli::add_deform_command(application);
   mixmesh::cli::add_march_command(application);
-  mixmesh::cli::add_surface_command(application);
-  mixmesh::cli::add_check_command(application);
-  mixmesh::cli::add_convert_command(application);
+  mixmesh::cli::add_compare_command(application);
 
   try {
     application.parse(argument_count, arguments);
