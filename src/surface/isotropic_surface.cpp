@@ -3,14 +3,6 @@
 // that plane, mapped back through the section placement of the planform.
 #include "mixmesh/surface/isotropic_surface.hpp"
 
-#include <CGAL/Constrained_Delaunay_triangulation_2.h>
-#include <CGAL/Delaunay_mesh_face_base_2.h>
-#include <CGAL/Delaunay_mesh_size_criteria_2.h>
-#include <CGAL/Delaunay_mesh_vertex_base_2.h>
-#include <CGAL/Delaunay_mesher_no_edge_refinement_2.h>
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Triangulation_vertex_base_with_info_2.h>
-
 #include <algorithm>
 #include <cmath>
 #include <set>
@@ -18,19 +10,12 @@
 
 #include "mixmesh/core/error.hpp"
 #include "mixmesh/geometry/airfoil_curve.hpp"
+#include "surface/constrained_mesher.hpp"
 
 namespace mixmesh {
 namespace {
 
-using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
-using VertexInfo = CGAL::Triangulation_vertex_base_with_info_2<Index, Kernel>;
-using VertexBase = CGAL::Delaunay_mesh_vertex_base_2<Kernel, VertexInfo>;
-using FaceBase = CGAL::Delaunay_mesh_face_base_2<Kernel>;
-using DataStructure = CGAL::Triangulation_data_structure_2<VertexBase, FaceBase>;
-using Triangulation =
-    CGAL::Constrained_Delaunay_triangulation_2<Kernel, DataStructure, CGAL::Exact_predicates_tag>;
-using Criteria = CGAL::Delaunay_mesh_size_criteria_2<Triangulation>;
-using Mesher = CGAL::Delaunay_mesher_no_edge_refinement_2<Triangulation, Criteria>;
+using namespace surface_detail;
 
 // Delaunay refinement bounded by the longest edge S gives a mean edge near 0.75 S on
 // these wings; the bound is set so the mean edge meets the requested length.

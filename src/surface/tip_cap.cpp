@@ -2,13 +2,6 @@
 // outline, refined by Delaunay refinement (Ruppert/Shewchuk) for a minimum angle and a
 // maximum edge, without ever splitting the outline, so that the cap shares exactly the
 // outline's nodes with the neighbouring structured patch.
-#include <CGAL/Constrained_Delaunay_triangulation_2.h>
-#include <CGAL/Delaunay_mesh_face_base_2.h>
-#include <CGAL/Delaunay_mesh_size_criteria_2.h>
-#include <CGAL/Delaunay_mesh_vertex_base_2.h>
-#include <CGAL/Delaunay_mesher_no_edge_refinement_2.h>
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Triangulation_vertex_base_with_info_2.h>
 
 #include <cmath>
 #include <limits>
@@ -17,19 +10,12 @@
 
 #include "mixmesh/core/error.hpp"
 #include "mixmesh/surface/wing_surface.hpp"
+#include "surface/constrained_mesher.hpp"
 
 namespace mixmesh {
 namespace {
 
-using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
-using VertexInfo = CGAL::Triangulation_vertex_base_with_info_2<Index, Kernel>;
-using VertexBase = CGAL::Delaunay_mesh_vertex_base_2<Kernel, VertexInfo>;
-using FaceBase = CGAL::Delaunay_mesh_face_base_2<Kernel>;
-using DataStructure = CGAL::Triangulation_data_structure_2<VertexBase, FaceBase>;
-using Triangulation =
-    CGAL::Constrained_Delaunay_triangulation_2<Kernel, DataStructure, CGAL::Exact_predicates_tag>;
-using Criteria = CGAL::Delaunay_mesh_size_criteria_2<Triangulation>;
-using Mesher = CGAL::Delaunay_mesher_no_edge_refinement_2<Triangulation, Criteria>;
+using namespace surface_detail;
 using Point = Kernel::Point_2;
 
 }  // namespace
