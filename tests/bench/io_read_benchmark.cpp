@@ -10,31 +10,13 @@
 
 #include "mixmesh/io/mesh_io.hpp"
 #include "mixmesh/mesh/cell_geometry.hpp"
+#include "reference_cells.hpp"
 
 using namespace mixmesh;
 
 namespace {
 
 constexpr int blocks = 64;
-
-// Positive orientation by a reflection of the node order that keeps the topology.
-void orient(MixedMesh& mesh, CellType type, Index* cell) {
-  if (signed_volume(type, mesh.points, cell) > 0) return;
-  switch (type) {
-    case CellType::tetrahedron:
-      std::swap(cell[1], cell[2]);
-      break;
-    case CellType::pyramid:
-      std::swap(cell[1], cell[3]);
-      break;
-    case CellType::prism:
-      std::swap(cell[1], cell[2]), std::swap(cell[4], cell[5]);
-      break;
-    case CellType::hexahedron:
-      std::swap(cell[1], cell[3]), std::swap(cell[5], cell[7]);
-      break;
-  }
-}
 
 MixedMesh million_cell_mesh() {
   MixedMesh mesh;
@@ -65,7 +47,6 @@ MixedMesh million_cell_mesh() {
             Index prism[6];
             for (int n = 0; n < 6; ++n)
               prism[n] = corner[static_cast<std::size_t>(half[static_cast<std::size_t>(n)])];
-            orient(mesh, CellType::prism, prism);
             mesh.add_cell(CellType::prism, prism, 2);
           }
         } else if (quarter == 2) {
@@ -78,7 +59,6 @@ MixedMesh million_cell_mesh() {
                                 corner[static_cast<std::size_t>(side_nodes[1])],
                                 corner[static_cast<std::size_t>(side_nodes[2])],
                                 corner[static_cast<std::size_t>(side_nodes[3])], centre};
-            orient(mesh, CellType::pyramid, pyramid);
             mesh.add_cell(CellType::pyramid, pyramid, 3);
           }
         } else {
@@ -88,13 +68,13 @@ MixedMesh million_cell_mesh() {
           for (const auto& path : paths) {
             Index tetrahedron[4] = {corner[0], corner[static_cast<std::size_t>(path[0])],
                                     corner[static_cast<std::size_t>(path[1])], corner[6]};
-            orient(mesh, CellType::tetrahedron, tetrahedron);
             mesh.add_cell(CellType::tetrahedron, tetrahedron, 4);
           }
         }
       }
     }
   }
+  reference::orient_positively(mesh);
   return mesh;
 }
 
