@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <sstream>
 
@@ -35,6 +37,16 @@ std::string format_number(double value) {
   std::ostringstream text;
   text << value;
   return text.str();
+}
+
+// The shortest decimal text that reads back as exactly `value`.
+std::string shortest_text(double value) {
+  char text[40];
+  for (int digits = 6; digits <= 17; ++digits) {
+    std::snprintf(text, sizeof text, "%.*g", digits, value);
+    if (std::strtod(text, nullptr) == value) break;
+  }
+  return text;
 }
 
 std::string type_name(const toml::node& node) {
@@ -98,9 +110,13 @@ const void* Section::find_scalar(std::string_view key) {
   if (!scalars || values.front().is_array() || values.front().is_table()) return node;
   Sweep sweep{qualified(path_, key), {}};
   for (const toml::node& value : values) {
-    std::ostringstream text;
-    value.visit([&](const auto& scalar) { text << scalar; });
-    sweep.values.push_back(text.str());
+    // Floating-point values in their shortest round-trip form (0.3, not 0.2999…),
+    // so the case names stay readable.
+    sweep.values.push_back(value.is_floating_point() ? shortest_text(value.as_floating_point()->get()) : [&] {
+      std::ostringstream text;
+      value.visit([&](const auto& scalar) { text << scalar; });
+      return text.str();
+    }());
   }
   const auto known = std::find_if(document_->sweeps.begin(), document_->sweeps.end(),
                                   [&](const Sweep& other) { return other.key == sweep.key; });

@@ -148,7 +148,7 @@ TEST(Config, SetReplacesAndCreatesValues) {
 
 TEST(Config, SweepDiscoveryListsScalarOptionsGivenAsArrays) {
   Document document = Document::parse(
-      "[wing]\nroot_chord = [1, 2.5]\nsections = [3, 4]\ntwist = [0, 1]\ndistribution = ['uniform', "
+      "[wing]\nroot_chord = [1, 2.5, 0.3]\nsections = [3, 4]\ntwist = [0, 1]\ndistribution = ['uniform', "
       "'tanh']\n",
       "w.toml");
   EXPECT_NE(error_of([&] { read_wing(document); }), "");  // an array where a number belongs
@@ -159,11 +159,11 @@ TEST(Config, SweepDiscoveryListsScalarOptionsGivenAsArrays) {
   EXPECT_EQ(first.twist, (std::vector<double>{0.0, 1.0}));  // a list option stays a list
   ASSERT_EQ(document.sweeps().size(), 3u);
   EXPECT_EQ(document.sweeps()[0].key, "wing.root_chord");
-  EXPECT_EQ(document.sweeps()[0].values, (std::vector<std::string>{"1", "2.5"}));
+  EXPECT_EQ(document.sweeps()[0].values, (std::vector<std::string>{"1", "2.5", "0.3"}));
   EXPECT_EQ(document.sweeps()[2].values, (std::vector<std::string>{"'uniform'", "'tanh'"}));
   for (const config::Sweep& sweep : document.sweeps()) document.set(sweep.key + "=" + sweep.values.back());
   const WingOptions last = read_wing(document);
-  EXPECT_DOUBLE_EQ(last.root_chord, 2.5);
+  EXPECT_DOUBLE_EQ(last.root_chord, 0.3);
   EXPECT_EQ(last.sections, 4);
   EXPECT_EQ(last.distribution, "tanh");
 }
