@@ -16,16 +16,6 @@ namespace {
 
 using FaceKey = std::array<Index, 4>;
 
-FaceKey sorted_key(const Index* nodes, int count) {
-  FaceKey key{nodes[0], nodes[1], nodes[2], count == 4 ? nodes[3] : -1};
-  // Insertion sort: std::sort on three or four entries trips GCC 12's array-bounds check.
-  for (int next = 1; next < count; ++next)
-    for (int slot = next;
-         slot > 0 && key[static_cast<std::size_t>(slot - 1)] > key[static_cast<std::size_t>(slot)]; --slot)
-      std::swap(key[static_cast<std::size_t>(slot - 1)], key[static_cast<std::size_t>(slot)]);
-  return key;
-}
-
 std::string point_text(const Vector3& point) {
   std::ostringstream text;
   text << "(" << point.x() << ", " << point.y() << ", " << point.z() << ")";
@@ -254,7 +244,7 @@ InterfaceResult split_interface(const MixedMesh& mesh, const OuterLayer& layer,
       Index corners[4] = {-1, -1, -1, -1};
       for (int corner = 0; corner < local.node_count; ++corner)
         corners[corner] = mesh.cell(type, outer.cell)[local.nodes[static_cast<std::size_t>(corner)]];
-      hull_faces.insert(sorted_key(corners, local.node_count));
+      hull_faces.insert(sorted_face_key(corners, local.node_count));
     }
     // A cell is split when a quad faces the far field; a prism whose outer faces are
     // triangles passes through and adds them to the hull as they are.
@@ -312,7 +302,7 @@ InterfaceResult split_interface(const MixedMesh& mesh, const OuterLayer& layer,
     const int count = node_count(type);
     for (std::size_t face = 0; face < mesh.face_count(type); ++face) {
       const Index* nodes = mesh.face(type, face);
-      if (hull_faces.count(sorted_key(nodes, count))) continue;
+      if (hull_faces.count(sorted_face_key(nodes, count))) continue;
       out.add_face(type, nodes, mesh.faces(type).markers[face]);
     }
   }
