@@ -101,9 +101,7 @@ void add_compare_command(CLI::App& application) {
       "Python interpreter for the pictures (default /usr/bin/python3 if it exists, else python3)");
   command->add_option("--scripts", arguments->scripts, "Folder of plot-compare.py and plot-mesh-cut.py");
   command->callback([arguments] {
-    config::Document document = config::Document::load(arguments->config);
-    for (const std::string& setting : arguments->settings) document.set(setting);
-    GenerateOptions options = read_generate_options(document);
+    GenerateOptions options = load_generate_options(arguments->config, arguments->settings);
     if (!arguments->output_folder.empty()) options.output.folder = arguments->output_folder;
     std::filesystem::create_directories(options.output.folder);
     const Log log(&std::cout);

@@ -38,9 +38,7 @@ void add_generate_command(CLI::App& application) {
   command->add_flag("--keep-invalid", arguments->keep_invalid,
                     "If the assembled mesh is invalid, still write it, as NAME.INVALID.vtu, for inspection");
   command->callback([arguments] {
-    config::Document document = config::Document::load(arguments->config);
-    for (const std::string& setting : arguments->settings) document.set(setting);
-    GenerateOptions options = read_generate_options(document);
+    GenerateOptions options = load_generate_options(arguments->config, arguments->settings);
     if (!arguments->output_folder.empty()) options.output.folder = arguments->output_folder;
     options.farfield.dump_directory = arguments->dump_stages;
     const Log log(&std::cout, arguments->quiet ? Log::Level::quiet : Log::Level::normal);

@@ -39,9 +39,7 @@ std::string metrics_row(const std::string& name, const BoundaryLayer& layer, con
 
 void run_march(const MarchArguments& arguments) {
   const Log log(&std::cout, arguments.quiet ? Log::Level::quiet : Log::Level::normal);
-  config::Document document = config::Document::load(arguments.config);
-  for (const std::string& setting : arguments.settings) document.set(setting);
-  GenerateOptions options = read_generate_options(document);
+  GenerateOptions options = load_generate_options(arguments.config, arguments.settings);
   if (arguments.normal) options.march.method = MarchMethod::normal;
   const SurfaceMesh surface = build_surface(options.surface);
   const BoundaryLayer layer = march_layers(surface, options.march, &log);

@@ -146,4 +146,11 @@ GenerateOptions read_generate_options(config::Document& document) {
   return options;
 }
 
+GenerateOptions load_generate_options(const std::filesystem::path& config,
+                                      const std::vector<std::string>& settings) {
+  config::Document document = config::Document::load(config);
+  for (const std::string& setting : settings) document.set(setting);
+  return read_generate_options(document);
+}
+
 }  // namespace mixmesh

@@ -44,6 +44,11 @@ struct GenerateOptions {
 // [farfield], [output]); unknown keys and tables are errors with their position.
 GenerateOptions read_generate_options(config::Document& document);
 
+// Loads a config file, applies the command line's KEY=VALUE overrides (--set) and
+// reads it: what every command that takes a generate config starts with.
+GenerateOptions load_generate_options(const std::filesystem::path& config,
+                                      const std::vector<std::string>& settings);
+
 struct StageTiming {
   std::string stage;
   double seconds = 0.0;
