@@ -12,9 +12,12 @@
 namespace mixmesh {
 
 // Neighbours of a structured node (i, j) in the new layer.
+// Every member starts at zero: Eigen leaves a default-constructed vector unset.
 struct StructuredStencil {
-  Vector3 east, west, north, south;  // (i+1, j), (i-1, j), (i, j+1), (i, j-1)
-  Vector3 north_east, north_west, south_east, south_west;
+  Vector3 east = Vector3::Zero(), west = Vector3::Zero();    // (i+1, j), (i-1, j)
+  Vector3 north = Vector3::Zero(), south = Vector3::Zero();  // (i, j+1), (i, j-1)
+  Vector3 north_east = Vector3::Zero(), north_west = Vector3::Zero();
+  Vector3 south_east = Vector3::Zero(), south_west = Vector3::Zero();
 };
 
 // Wild eq. (1), parabolised in the marching direction zeta: face-vector weights
