@@ -15,3 +15,7 @@ write_basic_package_version_file(${PROJECT_BINARY_DIR}/mixmeshConfigVersion.cmak
                                  COMPATIBILITY SameMinorVersion)
 install(FILES ${PROJECT_BINARY_DIR}/mixmeshConfig.cmake ${PROJECT_BINARY_DIR}/mixmeshConfigVersion.cmake
         DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/mixmesh)
+# The picture scripts `check --hist` and `compare` run (found in share/mixmesh/scripts).
+install(FILES scripts/plot-compare.py scripts/plot-mesh-cut.py
+              scripts/plot-quality-histograms.py
+        DESTINATION ${CMAKE_INSTALL_DATADIR}/mixmesh/scripts)

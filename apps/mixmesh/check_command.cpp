@@ -1,10 +1,6 @@
 // mixmesh check MESH: validity and quality of a mesh file, as a table, JSON and
 // histograms. Exit status 0 valid, 1 invalid, 2 unreadable file, bad option value or
 // an output that could not be written.
-#include <spawn.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -14,14 +10,13 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "plot_scripts.hpp"
 #include "mixmesh/core/atomic_file.hpp"
 #include "mixmesh/core/error.hpp"
 #include "mixmesh/core/log.hpp"
 #include "mixmesh/io/mesh_io.hpp"
 #include "mixmesh/quality/quality.hpp"
 #include "mixmesh/quality/report_format.hpp"
-
-extern char** environ;
 
 namespace mixmesh::cli {
 
@@ -40,36 +35,6 @@ struct CheckArguments {
   CheckOptions options;
 };
 
-// The plotting script: beside an installed program in ../share/mixmesh, or in the
-// scripts/ folder of the source tree the program was built in.
-std::filesystem::path find_histogram_script() {
-  std::error_code error;
-  const std::filesystem::path program = std::filesystem::read_symlink("/proc/self/exe", error);
-  std::vector<std::filesystem::path> candidates;
-  if (!error) {
-    candidates.push_back(program.parent_path().parent_path() / "share" / "mixmesh" / histogram_script);
-    for (std::filesystem::path folder = program.parent_path(); folder.has_relative_path();
-         folder = folder.parent_path())
-      candidates.push_back(folder / "scripts" / histogram_script);
-  }
-  for (const auto& candidate : candidates)
-    if (std::filesystem::is_regular_file(candidate)) return candidate;
-  throw Error(std::string("cannot find ") + histogram_script +
-              " (looked in share/mixmesh beside the program and in " + "scripts/ of its parent folders)");
-}
-
-void run_program(const std::vector<std::string>& command) {
-  std::vector<char*> arguments;
-  for (const std::string& argument : command) arguments.push_back(const_cast<char*>(argument.c_str()));
-  arguments.push_back(nullptr);
-  pid_t process = 0;
-  if (posix_spawn(&process, arguments[0], nullptr, nullptr, arguments.data(), environ) != 0)
-    throw Error("cannot run " + command[0]);
-  int status = 0;
-  waitpid(process, &status, 0);
-  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) throw Error(command[0] + " " + command[1] + " failed");
-}
-
 void write_text(const std::filesystem::path& path, const std::string& text) {
   write_atomically(path, [&](const std::filesystem::path& temporary) {
     std::ofstream file(temporary);
@@ -79,7 +44,12 @@ void write_text(const std::filesystem::path& path, const std::string& text) {
 }
 
 void write_histograms(const std::string& json, const CheckArguments& arguments) {
-  const std::filesystem::path script = find_histogram_script();
+  const std::filesystem::path folder = find_plot_scripts(histogram_script);
+  if (folder.empty())
+    throw Error(std::string("cannot find ") + histogram_script +
+                " (set MIXMESH_SCRIPTS; looked in share/mixmesh/scripts beside the program and in scripts/ of "
+                "its parent folders)");
+  const std::filesystem::path script = folder / histogram_script;
   const std::filesystem::path png = arguments.histograms;
   std::filesystem::path data = arguments.json;
   const bool temporary = data.empty();
@@ -90,7 +60,7 @@ void write_histograms(const std::string& json, const CheckArguments& arguments) 
   }
   try {
     write_atomically(png, [&](const std::filesystem::path& output) {
-      run_program({arguments.python, script.string(), data.string(), output.string()});
+      run_plot_script({arguments.python, script.string(), data.string(), output.string()});
     });
   } catch (...) {
     if (temporary) std::filesystem::remove(data);

@@ -1,10 +1,10 @@
 #include <algorithm>
 #include <cstdio>
-#include <cstdlib>
 #include <filesystem>
 #include <iostream>
 
 #include "commands.hpp"
+#include "plot_scripts.hpp"
 #include "mixmesh/core/error.hpp"
 #include "mixmesh/io/mesh_io.hpp"
 #include "mixmesh/pipeline/compare.hpp"
@@ -14,35 +14,15 @@ namespace mixmesh::cli {
 
 namespace {
 
-// The folder holding plot-compare.py and plot-mesh-cut.py: $MIXMESH_SCRIPTS, then
-// beside the build tree (build/bin/../../scripts) or the installed share folder.
-std::filesystem::path find_scripts(const std::string& given) {
-  std::vector<std::filesystem::path> candidates;
-  if (!given.empty()) candidates.emplace_back(given);
-  if (const char* variable = std::getenv("MIXMESH_SCRIPTS")) candidates.emplace_back(variable);
-  std::error_code error;
-  const std::filesystem::path program = std::filesystem::read_symlink("/proc/self/exe", error);
-  if (!error) {
-    const std::filesystem::path folder = program.parent_path();
-    candidates.push_back(folder / ".." / ".." / "scripts");
-    candidates.push_back(folder / ".." / "share" / "mixmesh" / "scripts");
-  }
-  for (const auto& candidate : candidates)
-    if (std::filesystem::exists(candidate / "plot-compare.py")) return candidate;
-  return {};
-}
-
-std::string shell_quoted(const std::string& text) {
-  std::string result = "'";
-  for (char character : text) result += character == '\'' ? std::string("'\\''") : std::string(1, character);
-  return result + "'";
-}
-
 // Runs one picture script; a failure is a warning (the tables are the result).
-bool run_script(const std::string& command, const Log& log) {
-  const int status = std::system(command.c_str());
-  if (status != 0) log.warning("picture command failed (status " + std::to_string(status) + "): " + command);
-  return status == 0;
+bool run_picture_script(const std::vector<std::string>& command, const Log& log) {
+  try {
+    run_plot_script(command);
+    return true;
+  } catch (const Error& error) {
+    log.warning(std::string("picture not written: ") + error.what());
+    return false;
+  }
 }
 
 std::string number(double value) {
@@ -140,31 +120,26 @@ void add_compare_command(CLI::App& application) {
     log.info("wrote " + (folder / "compare.csv").string() + ", " + (folder / "compare.json").string());
     if (arguments->no_pictures) return;
 
-    const std::filesystem::path scripts = find_scripts(arguments->scripts);
+    const std::filesystem::path scripts = find_plot_scripts("plot-compare.py", arguments->scripts);
     if (scripts.empty()) {
       log.warning("plot scripts not found (set --scripts or MIXMESH_SCRIPTS); no pictures written");
       return;
     }
-    const std::string python = shell_quoted(arguments->python);
-    if (run_script(python + " " + shell_quoted((scripts / "plot-compare.py").string()) + " " +
-                       shell_quoted((folder / "compare.csv").string()) + " -o " +
-                       shell_quoted((folder / "compare_bars.png").string()),
-                   log))
+    const std::string& python = arguments->python;
+    if (run_picture_script({python, (scripts / "plot-compare.py").string(), (folder / "compare.csv").string(),
+                            "-o", (folder / "compare_bars.png").string()},
+                           log))
       log.info("wrote " + (folder / "compare_bars.png").string());
     for (const CompareRow& row : rows) {
       const std::filesystem::path picture = folder / (options.output.name + "_" + row.key + "_cut.png");
       const CutWindow close_up = leading_edge_close_up(window, row.layer_thickness);
-      const std::string window_arguments =
-          " --window " + number(window.x_minimum) + " " + number(window.x_maximum) + " " +
-          number(window.z_minimum) + " " + number(window.z_maximum) + " --zoom " +
-          number(close_up.x_minimum) + " " + number(close_up.x_maximum) + " " + number(close_up.z_minimum) +
-          " " + number(close_up.z_maximum);
-      if (run_script(python + " " + shell_quoted((scripts / "plot-mesh-cut.py").string()) + " " +
-                         shell_quoted(row.mesh_file.string()) + " --axis y --position " + number(window.y) +
-                         window_arguments + " --size 1800x700 --title " +
-                         shell_quoted(row.label + ", cut y = " + number(window.y) + " m") + " -o " +
-                         shell_quoted(picture.string()),
-                     log))
+      const std::vector<std::string> command = {
+          python, (scripts / "plot-mesh-cut.py").string(), row.mesh_file.string(), "--axis", "y", "--position",
+          number(window.y), "--window", number(window.x_minimum), number(window.x_maximum),
+          number(window.z_minimum), number(window.z_maximum), "--zoom", number(close_up.x_minimum),
+          number(close_up.x_maximum), number(close_up.z_minimum), number(close_up.z_maximum), "--size",
+          "1800x700", "--title", row.label + ", cut y = " + number(window.y) + " m", "-o", picture.string()};
+      if (run_picture_script(command, log))
         log.info("wrote " + picture.string());
     }
   });

@@ -16,3 +16,8 @@ set_tests_properties(package_consumer_build PROPERTIES LABELS regression
                      FIXTURES_REQUIRED package_configured FIXTURES_SETUP package_built)
 set_tests_properties(package_consumer_run PROPERTIES LABELS regression FIXTURES_REQUIRED package_built
                      PASS_REGULAR_EXPRESSION "^1\n$")
+# The installed picture scripts run from the installation's share folder.
+add_test(NAME package_scripts_installed
+         COMMAND ${MIXMESH_PYTHON} ${package_prefix}/share/mixmesh/scripts/plot-quality-histograms.py --help)
+set_tests_properties(package_scripts_installed PROPERTIES LABELS regression FIXTURES_REQUIRED package_installed
+                     PASS_REGULAR_EXPRESSION "plot-quality-histograms.py REPORT.json")
