@@ -90,6 +90,67 @@ std::string describe(const Vector3& x) {
   return stream.str();
 }
 
+// Outward conormals (in the surface, across the edge) of the free edges at a sheet's
+// downstream end (a wake's end): free sheet edges that face away from the line where the
+// sheet leaves the wall (within 30 degrees of the direction from its nearest node), at
+// columns that start on the sheet only. Such a line keeps out of these directions, so
+// the side faces of the end stay in the surface the edge sweeps along the sheet normal:
+// a plane end gives plane side faces, exact to the last bit. Lines drifting 1e-15 off
+// that plane made the hull there so nearly flat that the far-field tetrahedralisation
+// filled it with slivers of no volume. The sheet's side edges (a wake's tip edge) are
+// left free: their lines turn out round the wing tip with the tip's.
+std::vector<std::vector<Vector3>> end_conormals(const Front& front, const std::vector<Vector3>& points,
+                                                const std::vector<char>& on_wall) {
+  std::vector<Vector3> attachment;
+  for (const FrontFace& f : front.faces)
+    if (!f.wall)
+      for (int k = 0; k < f.corner_count; ++k)
+        if (on_wall[static_cast<std::size_t>(f.columns[static_cast<std::size_t>(k)])])
+          attachment.push_back(points[static_cast<std::size_t>(f.columns[static_cast<std::size_t>(k)])]);
+  std::vector<std::vector<Vector3>> conormals(points.size());
+  if (attachment.empty()) return conormals;
+  const double facing = std::cos(M_PI / 6.0);
+  for (const march_detail::FreeEdge& edge : front.free_edges) {
+    const FrontFace& f = front.faces[static_cast<std::size_t>(edge.face)];
+    const int n = f.corner_count;
+    if (f.wall) continue;
+    auto at = [&](int k) -> const Vector3& {
+      return points[static_cast<std::size_t>(f.columns[static_cast<std::size_t>((k + n) % n)])];
+    };
+    Vector3 area = Vector3::Zero();
+    for (int k = 0; k < n; ++k) area += at(k).cross(at(k + 1));
+    const Vector3 conormal = unit_or((at(edge.corner + 1) - at(edge.corner)).cross(area), Vector3::Zero());
+    const Vector3 middle = 0.5 * (at(edge.corner) + at(edge.corner + 1));
+    Vector3 away = middle - attachment.front();
+    for (const Vector3& point : attachment)
+      if ((middle - point).squaredNorm() < away.squaredNorm()) away = middle - point;
+    if (!(conormal.dot(away) >= facing * away.norm()) || conormal.squaredNorm() == 0.0) continue;
+    for (int k : {edge.corner, (edge.corner + 1) % n}) {
+      const auto column = static_cast<std::size_t>(f.columns[static_cast<std::size_t>(k)]);
+      if (!on_wall[column]) conormals[column].push_back(conormal);
+    }
+  }
+  return conormals;
+}
+
+// The step from `from` to `to` without its parts along the conormals (Gram-Schmidt),
+// scaled back to its length.
+Vector3 keep_in_sheet_end(const Vector3& from, const Vector3& to, const std::vector<Vector3>& conormals) {
+  if (conormals.empty()) return to;
+  std::vector<Vector3> basis;
+  for (const Vector3& conormal : conormals) {
+    Vector3 direction = conormal;
+    for (const Vector3& unit : basis) direction -= direction.dot(unit) * unit;
+    if (direction.norm() > 1e-6) basis.push_back(direction.normalized());
+  }
+  Vector3 step = to - from;
+  const double length = step.norm();
+  for (const Vector3& unit : basis) step -= step.dot(unit) * unit;
+  const double kept = step.norm();
+  if (!(kept > 1e-3 * length)) return to;  // nothing left to march along: leave the line as it was
+  return from + (length / kept) * step;
+}
+
 }  // namespace
 
 BoundaryLayer march_layers(const SurfaceMesh& surface, const MarchOptions& options, const Log* log) {
@@ -124,6 +185,7 @@ BoundaryLayer march_layers(const SurfaceMesh& surface, const MarchOptions& optio
     if (f.wall)
       for (int k = 0; k < f.corner_count; ++k)
         on_wall[static_cast<std::size_t>(f.columns[static_cast<std::size_t>(k)])] = 1;
+  const std::vector<std::vector<Vector3>> conormals = end_conormals(front, current, on_wall);
   std::vector<Vector3> direction(column_count, Vector3::UnitZ());
   direction = column_normals(front, current, face_active, true, direction, on_wall, 1.0);
   previous = current;
@@ -192,8 +254,10 @@ BoundaryLayer march_layers(const SurfaceMesh& surface, const MarchOptions& optio
           next[c] = current[c] + step[c] * unit_or((1.0 - release) * own + release * mean, own);
         }
     }
-    for (std::size_t c = 0; c < column_count; ++c)
+    for (std::size_t c = 0; c < column_count; ++c) {
+      next[c] = keep_in_sheet_end(current[c], next[c], conormals[c]);
       if (front.on_symmetry[c]) next[c].y() = surface.symmetry_y;
+    }
 
     // Safety: shorten and locally smooth the steps of failing columns, then stop them.
     std::vector<int> active_faces;
@@ -235,6 +299,7 @@ BoundaryLayer march_layers(const SurfaceMesh& surface, const MarchOptions& optio
           ++report.reduced_steps;
         }
         next[c] = current[c] + step[c] * unit_or(mean_direction[c] + normal[c], normal[c]);
+        next[c] = keep_in_sheet_end(current[c], next[c], conormals[c]);
         if (front.on_symmetry[c]) next[c].y() = surface.symmetry_y;
         for (int face : front.column_faces[c])
           if (face_active[static_cast<std::size_t>(face)]) recheck.push_back(face);

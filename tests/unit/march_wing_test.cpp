@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -83,6 +84,43 @@ TEST(MarchWing, ThickWing) {
   march_surfaces::TestWing wing;
   wing.naca = "0021";
   check_wing(wing);
+}
+
+TEST(MarchWing, WakeEndLinesStayInTheEndPlaneAndTheTipEdgeStaysFree) {
+  // Untapered, unswept, twisted: the wake ends in the plane x = const, its sheet tilts
+  // from root to tip. Every line from the end stays in that plane to the last bit
+  // (within 1e-15 m of it the far field filled the hull with slivers); the lines of
+  // the wake's tip edge still turn out round the tip.
+  march_surfaces::TestWing wing;
+  wing.tip_twist_degrees = 5.0;
+  wing.chordwise_cells = 48;
+  wing.spanwise_cells = 12;
+  const SurfaceMesh surface = march_surfaces::wing(wing);
+  MarchOptions options = wing_options();
+  options.spacing.layer_count = 24;
+  const BoundaryLayer layer = march_layers(surface, options);
+  ASSERT_EQ(layer.report.stopped_faces, 0);
+  double end = -1e300, tip = -1e300;
+  for (const Vector3& point : surface.points) {
+    end = std::max(end, point.x());
+    tip = std::max(tip, point.y());
+  }
+  int end_lines = 0;
+  double tip_edge_outboard = 0.0;
+  for (std::size_t column = 0; column < layer.column_node.size(); ++column) {
+    const Vector3& start = surface.points[static_cast<std::size_t>(layer.column_node[column])];
+    const Vector3& top = layer.mesh.points[static_cast<std::size_t>(layer.column_points[column].back())];
+    if (start.x() == end) {
+      ++end_lines;
+      for (Index point : layer.column_points[column])
+        EXPECT_EQ(layer.mesh.points[static_cast<std::size_t>(point)].x(), end) << "line " << column;
+    } else if (start.y() == tip && start.x() > wing.root_chord + 0.1) {
+      tip_edge_outboard = std::max(tip_edge_outboard, top.y() - tip);
+    }
+  }
+  EXPECT_EQ(end_lines, 2 * (wing.spanwise_cells + 1)) << "above and below the sheet";
+  EXPECT_GT(tip_edge_outboard, 0.0);
+  EXPECT_EQ(march_surfaces::invalid_cell_count(layer.mesh), 0);
 }
 
 }  // namespace
