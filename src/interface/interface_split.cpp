@@ -76,9 +76,11 @@ namespace {
 // The pieces a split about `apex` makes: pyramids on the quads that stay, two
 // tetrahedra on every outer quad (along its chosen diagonal), one on every triangle.
 // visit(CellType, nodes, is_hull_triangle) with the apex as node index `apex_index`.
+// Bit f of `flipped` cuts outer quad f along the other diagonal than the rule's.
 template <typename Visit>
 void for_each_piece(CellType type, const std::vector<Vector3>& points, const Index* nodes,
-                    unsigned outer_faces, const InterfaceOptions& options, Index apex_index, Visit visit) {
+                    unsigned outer_faces, unsigned flipped, const InterfaceOptions& options, Index apex_index,
+                    Visit visit) {
   const CellDescriptor& shape = descriptor(type);
   for (int face = 0; face < shape.face_count; ++face) {
     const LocalFace& local = shape.faces[static_cast<std::size_t>(face)];
@@ -99,7 +101,8 @@ void for_each_piece(CellType type, const std::vector<Vector3>& points, const Ind
       const Index piece[5] = {corners[0], corners[3], corners[2], corners[1], apex_index};
       visit(CellType::pyramid, piece, false);
     } else {
-      const int start = diagonal_start(points, corners, options.diagonal);
+      const int start =
+          diagonal_start(points, corners, options.diagonal) ^ static_cast<int>((flipped >> face) & 1u);
       tetrahedron(corners[start], corners[start + 1], corners[start + 2]);
       tetrahedron(corners[start], corners[start + 2], corners[(start + 3) % 4]);
     }
@@ -109,25 +112,27 @@ void for_each_piece(CellType type, const std::vector<Vector3>& points, const Ind
 // The worst piece of a split about the last point of `points`: the smallest corner
 // Jacobian (scaled), negative when a piece is inverted or tangled.
 double worst_piece(CellType type, const std::vector<Vector3>& points, const Index* nodes,
-                   unsigned outer_faces, const InterfaceOptions& options) {
+                   unsigned outer_faces, unsigned flipped, const InterfaceOptions& options) {
   double worst = 1.0;
   const Index apex = static_cast<Index>(points.size() - 1);
-  for_each_piece(
-      type, points, nodes, outer_faces, options, apex, [&](CellType piece, const Index* corners, bool) {
-        const CellShape shape = cell_shape(piece, points, corners);
-        worst = std::min(worst, shape.valid() ? shape.min_corner_jacobian : -1.0 - shape.negative_corners);
-      });
+  for_each_piece(type, points, nodes, outer_faces, flipped, options, apex,
+                 [&](CellType piece, const Index* corners, bool) {
+                   const CellShape shape = cell_shape(piece, points, corners);
+                   worst = std::min(
+                       worst, shape.valid() ? shape.min_corner_jacobian : -1.0 - shape.negative_corners);
+                 });
   return worst;
 }
 
 // The split point: the cell centre (Wild Fig. 2) unless a piece about it is inverted
 // or nearly so (a thin cell with a warped face), then the best point a compass search
-// around the centre finds. The last point of `points` is the candidate.
+// around the centre finds. The last point of `points` is the candidate. Returns the
+// worst piece about that point in `best_worst`.
 Vector3 split_point(CellType type, std::vector<Vector3>& points, const Index* nodes, unsigned outer_faces,
-                    const InterfaceOptions& options) {
+                    unsigned flipped, const InterfaceOptions& options, double& best_worst) {
   Vector3 best = cell_centre(type, points, nodes);
   points.push_back(best);
-  double best_worst = worst_piece(type, points, nodes, outer_faces, options);
+  best_worst = worst_piece(type, points, nodes, outer_faces, flipped, options);
   double step = 0.0;
   for (int corner = 0; corner < node_count(type); ++corner)
     step = std::max(step, (points[static_cast<std::size_t>(nodes[corner])] - best).norm());
@@ -138,7 +143,7 @@ Vector3 split_point(CellType type, std::vector<Vector3>& points, const Index* no
     bool improved = false;
     for (const Vector3& direction : directions) {
       points.back() = best + step * direction;
-      const double worst = worst_piece(type, points, nodes, outer_faces, options);
+      const double worst = worst_piece(type, points, nodes, outer_faces, flipped, options);
       if (worst > best_worst) {
         best_worst = worst;
         best = points.back();
@@ -157,11 +162,36 @@ Vector3 split_point(CellType type, std::vector<Vector3>& points, const Index* no
 void split_cell(CellType type, std::size_t cell, const Index* nodes, unsigned outer_faces, int region,
                 const InterfaceOptions& options, InterfaceResult& result) {
   MixedMesh& out = result.mesh;
-  const Vector3 point = split_point(type, out.points, nodes, outer_faces, options);
+  // The rule's diagonals first; where no split point makes every piece valid (an outer
+  // quad twisted by more than the cell is thick, as at a wing tip's trailing edge), the
+  // other diagonal of some outer quads: one of the two folds of a twisted quad leans
+  // towards the cell's inside. Both triangles stay in this cell, so the hull conforms.
+  std::vector<unsigned> outer_quads;
+  for (int face = 0; face < descriptor(type).face_count; ++face)
+    if (((outer_faces >> face) & 1u) &&
+        descriptor(type).faces[static_cast<std::size_t>(face)].node_count == 4)
+      outer_quads.push_back(1u << face);
+  unsigned flipped = 0u;
+  double worst = 0.0;
+  Vector3 point = split_point(type, out.points, nodes, outer_faces, flipped, options, worst);
+  const unsigned combinations = 1u << std::min<std::size_t>(outer_quads.size(), 4);
+  for (unsigned combination = 1; combination < combinations && worst <= 0.0; ++combination) {
+    unsigned candidate = 0u;
+    for (std::size_t quad = 0; quad < outer_quads.size() && quad < 4; ++quad)
+      if ((combination >> quad) & 1u) candidate |= outer_quads[quad];
+    double candidate_worst = 0.0;
+    const Vector3 candidate_point =
+        split_point(type, out.points, nodes, outer_faces, candidate, options, candidate_worst);
+    if (candidate_worst > worst) {
+      worst = candidate_worst;
+      point = candidate_point;
+      flipped = candidate;
+    }
+  }
   const Index centre = static_cast<Index>(out.points.size());
   out.points.push_back(point);
   result.centres.push_back(centre);
-  for_each_piece(type, out.points, nodes, outer_faces, options, centre,
+  for_each_piece(type, out.points, nodes, outer_faces, flipped, options, centre,
                  [&](CellType piece, const Index* corners, bool outer) {
                    if (!cell_shape(piece, out.points, corners).valid())
                      throw Error("interface: splitting " + std::string(name(type)) + " " +
@@ -207,6 +237,20 @@ void cap_cell(CellType type, std::size_t cell, const Index* nodes, unsigned oute
     out.points.push_back(middle + options.cap_height * shortest * normal);
     // Seen from the apex (outside) the outward winding is counter-clockwise already.
     const Index pyramid[5] = {corners[0], corners[1], corners[2], corners[3], apex};
+    // A twisted quad needs a higher apex (its corner normals lean away from the mean
+    // normal): raise it, doubling, up to cap_height_limit times the quad's longest
+    // diagonal, and stop at the first valid cap.
+    const double diagonal = std::max(
+        (out.points[static_cast<std::size_t>(corners[2])] - out.points[static_cast<std::size_t>(corners[0])])
+            .norm(),
+        (out.points[static_cast<std::size_t>(corners[3])] - out.points[static_cast<std::size_t>(corners[1])])
+            .norm());
+    for (double height = options.cap_height * shortest;
+         !cell_shape(CellType::pyramid, out.points, pyramid).valid() &&
+         2.0 * height <= options.cap_height_limit * diagonal;) {
+      height *= 2.0;
+      out.points.back() = middle + height * normal;
+    }
     if (!cell_shape(CellType::pyramid, out.points, pyramid).valid())
       throw Error("interface: " + std::string(name(type)) + " " + std::to_string(cell) +
                   " can neither be split about its centre nor capped on face " + std::to_string(face) +

@@ -258,3 +258,61 @@ TEST(InterfaceSplit, ThinWarpedCellThatCannotBeSplitIsCappedInstead) {
   EXPECT_TRUE(faces.untagged_boundary.empty());
   EXPECT_TRUE(faces.stray_boundary_faces.empty());
 }
+
+TEST(InterfaceSplit, TwistedTopIsCutAlongTheDiagonalThatLetsTheSplitStayValid) {
+  // A rhombus cell (top quad 4-5-7-6 in the block's numbering; short diagonal 4-7 along
+  // y, long 5-6 along x) whose top and bottom are twisted alike into saddles (5, 6 and
+  // 1, 2 raised, the others lowered by 0.9 of the cell height), like a cell beside a
+  // convex corner of the layers. The shorter diagonal of the top is the valley 4-7: no
+  // split point makes both its tetrahedra and the pyramid on the twisted bottom valid.
+  // Cut along the ridge 5-6, the split is valid.
+  MixedMesh input = hexahedron_block(1, 1, 1, [](const Vector3& p) {
+    const double along = p.x() - p.y(), across = p.x() + p.y() - 1.0;
+    return Vector3(1.5 * along, 0.5 * across, 0.4 * p.z());
+  });
+  for (Index node : {1, 2, 5, 6}) input.points[static_cast<std::size_t>(node)].z() += 0.36;
+  for (Index node : {0, 3, 4, 7}) input.points[static_cast<std::size_t>(node)].z() -= 0.36;
+  ASSERT_EQ(invalid_cells(input), 0);
+  const double ridge = (input.points[6] - input.points[5]).norm();
+  const double valley = (input.points[7] - input.points[4]).norm();
+  ASSERT_LT(valley, ridge) << "the rule alone would take the valley";
+
+  const InterfaceResult result = split_interface(input, top_layer(1, 1, 1));
+  EXPECT_EQ(result.capped_cells, 0u);
+  ASSERT_EQ(result.hull.size(), 2u);
+  for (const auto& triangle : result.hull)
+    EXPECT_EQ(
+        std::count(triangle.begin(), triangle.end(), 5) + std::count(triangle.begin(), triangle.end(), 6), 2)
+        << "both hull triangles share the ridge 5-6";
+  EXPECT_EQ(invalid_cells(result.mesh), 0);
+  const FaceConnectivity faces = match_faces(result.mesh);
+  EXPECT_TRUE(faces.conforming());
+  EXPECT_TRUE(faces.untagged_boundary.empty());
+}
+
+TEST(InterfaceSplit, CapOnATwistedQuadIsRaisedUntilValid) {
+  // A trailing-edge cell at a wing tip (marched layers of a taper 0.3 wing, metres): a
+  // top 0.6 mm by 11 mm twisted by 0.15 mm on a cell 0.26 mm thick. No split point
+  // gives valid pieces, and a cap a quarter of the short edge high is inverted.
+  MixedMesh input = reference::single_cell(CellType::hexahedron);
+  input.points = {{0.3019396, 2.4900778, -0.0207519}, {0.3013277, 2.4901052, -0.0207548},
+                  {0.2985206, 2.5010016, -0.0198548}, {0.2990872, 2.5006164, -0.0204153},
+                  {0.3019331, 2.4901146, -0.0210112}, {0.3013185, 2.4901526, -0.0210122},
+                  {0.2984818, 2.5012589, -0.0198846}, {0.2990432, 2.5008094, -0.0205867}};
+  reference::tag_boundary(input);
+  ASSERT_EQ(invalid_cells(input), 0);
+  const OuterLayer top = {{{0, 1}}, {}};
+  InterfaceOptions low_cap;
+  low_cap.cap_height_limit = 0.0;
+  EXPECT_THROW(split_interface(input, top, low_cap), Error);
+
+  const InterfaceResult result = split_interface(input, top);
+  EXPECT_EQ(result.capped_cells, 1u);
+  EXPECT_EQ(result.mesh.cell_count(CellType::hexahedron), 1u);
+  EXPECT_EQ(result.mesh.cell_count(CellType::pyramid), 1u);
+  EXPECT_EQ(result.hull.size(), 4u);
+  EXPECT_EQ(invalid_cells(result.mesh), 0);
+  const FaceConnectivity faces = match_faces(result.mesh);
+  EXPECT_TRUE(faces.conforming());
+  EXPECT_TRUE(faces.untagged_boundary.empty());
+}

@@ -64,6 +64,9 @@ struct InterfaceOptions {
   // times the quad's shortest edge; false: such a cell is an error.
   bool cap_unsplittable_cells = true;
   double cap_height = 0.25;
+  // A cap on a twisted quad that is inverted at cap_height is raised (doubling) up to
+  // this multiple of the quad's longest diagonal.
+  double cap_height_limit = 0.5;
 };
 
 struct InterfaceResult {
