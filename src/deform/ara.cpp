@@ -1,5 +1,8 @@
 // The ARA predictor–corrector (Martineau & Georgala §4.3): distances, rigid-body
 // initialisation, dual-mesh smoothing, interpolation to nodes, negative-volume repair.
+// Everything that depends only on the undeformed mesh is kept between calls
+// (AraGeometry), as are the nearest faces, so a repeat deformation redoes only the
+// motion-dependent work.
 #include "mixmesh/deform/ara.hpp"
 
 #include <tbb/parallel_for.h>
@@ -10,6 +13,7 @@
 #include <limits>
 #include <sstream>
 
+#include "deform/ara_smoothing.hpp"
 #include "deform/dual_mesh.hpp"
 #include "deform/rotation.hpp"
 #include "deform/wall_faces.hpp"
@@ -59,116 +63,6 @@ std::vector<FaceMotion> wall_motion(const DualMesh& dual, const WallFaces& walls
   return motion;
 }
 
-// Dual-mesh neighbours of every cell (CSR) with the smoothing weights σ of eq. 20, and
-// the wall faces of every cell as Dirichlet neighbours.
-struct Stencil {
-  std::vector<std::size_t> offsets;
-  std::vector<Index> neighbour;  // cell index, or −(wall + 1) for a wall face
-  std::vector<double> weight;
-};
-
-Stencil build_stencil(const DualMesh& dual, const WallFaces& walls, const std::vector<Vector3>& centres,
-                      const std::vector<Vector3>& wall_centres, const std::vector<double>& diffusivity,
-                      const std::vector<Vector3>& points) {
-  const std::size_t cells = dual.cell_count();
-  std::vector<Index> wall_of_face(dual.face_count(), -1);
-  for (std::size_t wall = 0; wall < walls.faces.size(); ++wall)
-    wall_of_face[static_cast<std::size_t>(walls.faces[wall])] = static_cast<Index>(wall);
-  Stencil stencil;
-  stencil.offsets.assign(cells + 1, 0);
-  for (const auto& pair : dual.interior_cells) {
-    ++stencil.offsets[static_cast<std::size_t>(pair[0]) + 1];
-    ++stencil.offsets[static_cast<std::size_t>(pair[1]) + 1];
-  }
-  for (std::size_t face = 0; face < dual.face_count(); ++face)
-    if (wall_of_face[face] >= 0) ++stencil.offsets[static_cast<std::size_t>(dual.face_cell[face]) + 1];
-  for (std::size_t cell = 0; cell < cells; ++cell) stencil.offsets[cell + 1] += stencil.offsets[cell];
-  stencil.neighbour.resize(stencil.offsets.back());
-  stencil.weight.resize(stencil.offsets.back());
-  std::vector<std::size_t> fill(stencil.offsets.begin(), stencil.offsets.end() - 1);
-  constexpr double tiny = 1e-300;
-  for (std::size_t pair_index = 0; pair_index < dual.interior_cells.size(); ++pair_index) {
-    const auto& pair = dual.interior_cells[pair_index];
-    const std::size_t a = static_cast<std::size_t>(pair[0]);
-    const std::size_t b = static_cast<std::size_t>(pair[1]);
-    // Baker's diffusivity at the face, eq. 17; σ = τ A / |x_i − x_j|, eq. 20.
-    const double tau = 0.5 * (diffusivity[a] + diffusivity[b]);
-    const double sigma =
-        tau * dual.interior_area[pair_index] / std::max((centres[a] - centres[b]).norm(), tiny);
-    stencil.neighbour[fill[a]] = pair[1];
-    stencil.weight[fill[a]++] = sigma;
-    stencil.neighbour[fill[b]] = pair[0];
-    stencil.weight[fill[b]++] = sigma;
-  }
-  for (std::size_t face = 0; face < dual.face_count(); ++face) {
-    const Index wall = wall_of_face[face];
-    if (wall < 0) continue;
-    const std::size_t cell = static_cast<std::size_t>(dual.face_cell[face]);
-    const double distance = (centres[cell] - wall_centres[static_cast<std::size_t>(wall)]).norm();
-    const double sigma = diffusivity[cell] * detail::face_area(dual, face, points) / std::max(distance, tiny);
-    stencil.neighbour[fill[cell]] = -(wall + 1);
-    stencil.weight[fill[cell]++] = sigma;
-  }
-  return stencil;
-}
-
-// Rigid transport for the velocity smoothing: the velocity a neighbour (cell centre or
-// wall face centre) implies at x_i when x_i moves rigidly with it,
-// u_j + (R_j − I)(x_i − x_j) — the locus of eq. 23 applied on the dual mesh.
-struct Transport {
-  const std::vector<Eigen::Matrix3d>* cell_rotation = nullptr;  // R_j − I per cell
-  const std::vector<Eigen::Matrix3d>* wall_rotation = nullptr;  // R_f − I per wall face
-  const std::vector<Vector3>* centres = nullptr;
-  const std::vector<Vector3>* wall_centres = nullptr;
-};
-
-// Point Gauss–Seidel on ∇·(τ∇v) = 0 (eq. 19), one colour at a time so that cells of a
-// colour update in parallel and every update sees its neighbours' newest values.
-// Returns the iterations done and the final r.m.s. residual (relative to `scale`).
-std::pair<int, double> smooth(std::vector<Vector3>& values, const std::vector<Vector3>& wall_values,
-                              const Stencil& stencil, const std::vector<std::vector<Index>>& colours,
-                              const AraOptions& options, double scale, const Transport& transport = {}) {
-  const std::size_t cells = values.size();
-  if (cells == 0 || scale <= 0.0) return {0, 0.0};
-  std::vector<double> residual(cells, 0.0);
-  double rms = std::numeric_limits<double>::infinity();
-  int iteration = 0;
-  const double epsilon = options.relaxation;
-  const bool transported = transport.cell_rotation != nullptr;
-  while (iteration < options.max_iterations) {
-    ++iteration;
-    for (const auto& colour : colours) {
-      parallel_cells(colour.size(), [&](std::size_t slot) {
-        const std::size_t cell = static_cast<std::size_t>(colour[slot]);
-        Vector3 sum = Vector3::Zero();
-        double weight = 0.0;
-        for (std::size_t entry = stencil.offsets[cell]; entry < stencil.offsets[cell + 1]; ++entry) {
-          const Index other = stencil.neighbour[entry];
-          const std::size_t at = static_cast<std::size_t>(other >= 0 ? other : -other - 1);
-          Vector3 value = other >= 0 ? values[at] : wall_values[at];
-          if (transported) {
-            const Vector3& from = other >= 0 ? (*transport.centres)[at] : (*transport.wall_centres)[at];
-            const Eigen::Matrix3d& turn =
-                other >= 0 ? (*transport.cell_rotation)[at] : (*transport.wall_rotation)[at];
-            value += turn * ((*transport.centres)[cell] - from);
-          }
-          sum += stencil.weight[entry] * value;
-          weight += stencil.weight[entry];
-        }
-        if (weight <= 0.0) return;
-        const Vector3 target = sum / weight;
-        residual[cell] = (target - values[cell]).squaredNorm();
-        values[cell] = (1.0 - epsilon) * values[cell] + epsilon * target;  // eq. 19
-      });
-    }
-    double total = 0.0;
-    for (double entry : residual) total += entry;
-    rms = std::sqrt(total / static_cast<double>(cells)) / scale;
-    if (rms <= options.tolerance) break;
-  }
-  return {iteration, rms};
-}
-
 // Pseudo-Laplacian weights of the cells around one node (eq. 24–26):
 // ω_j = 1 + λᵀ(x_j − x_i), λ = −I⁻¹ R, R = Σ (x_j − x_i), I = Σ (x_j − x_i)(x_j − x_i)ᵀ;
 // clipped to [0, 2] as in Holmes & Connell so no cell counts negatively.
@@ -197,48 +91,139 @@ void pseudo_laplacian_weights(const Vector3& node, const Index* cells, std::size
 
 }  // namespace
 
+namespace detail {
+
+// The parts of the method that depend only on the undeformed mesh and the roles of its
+// markers, not on the motion.
+struct AraGeometry {
+  std::uint64_t connectivity = 0;
+  std::uint64_t points = 0;
+  std::vector<MarkerRole> marker_roles;
+  std::uint64_t nearest_key = 0;  // connectivity and wall faces (NearestFaces::mesh_hash)
+  DualMesh dual;
+  WallFaces walls;
+  std::vector<Vector3> centres;
+  std::vector<Vector3> wall_centres;
+  SmoothingStencil stencil;
+  std::vector<double> node_weights;         // eq. 24–26, per entry of dual.point_cells
+  std::vector<std::vector<Index>> colours;  // Gauss–Seidel only, built when first needed
+};
+
+}  // namespace detail
+
+namespace {
+
+std::shared_ptr<detail::AraGeometry> prepare_geometry(const MixedMesh& mesh,
+                                                      const std::vector<MarkerRole>& marker_roles,
+                                                      std::uint64_t connectivity, std::uint64_t point_bits) {
+  auto geometry = std::make_shared<detail::AraGeometry>();
+  detail::AraGeometry& entry = *geometry;
+  entry.connectivity = connectivity;
+  entry.points = point_bits;
+  entry.marker_roles = marker_roles;
+  entry.dual = detail::build_dual_mesh(mesh);
+  entry.walls = detail::wall_faces(entry.dual, marker_roles);
+  if (entry.walls.faces.empty()) throw Error("ara: the mesh has no wall boundary (every marker slides)");
+  entry.nearest_key = detail::combine_hash(connectivity, entry.walls.faces);
+  const DualMesh& dual = entry.dual;
+  const std::vector<Vector3>& points = mesh.points;
+  const std::size_t cells = dual.cell_count();
+
+  entry.centres.resize(cells);
+  std::vector<double> volume(cells);
+  parallel_cells(cells, [&](std::size_t cell) {
+    entry.centres[cell] = detail::cell_centre(dual, cell, points);
+    volume[cell] = std::abs(detail::cell_measure(dual, cell, points));
+  });
+  entry.wall_centres.resize(entry.walls.faces.size());
+  for (std::size_t wall = 0; wall < entry.walls.faces.size(); ++wall)
+    entry.wall_centres[wall] =
+        detail::face_centre(dual, static_cast<std::size_t>(entry.walls.faces[wall]), points);
+
+  // Baker's diffusivity τ = 1 + (V_max − V_min)/V of the undeformed mesh, eq. 13.
+  const auto [smallest, largest] = std::minmax_element(volume.begin(), volume.end());
+  std::vector<double> diffusivity(cells);
+  for (std::size_t cell = 0; cell < cells; ++cell)
+    diffusivity[cell] = 1.0 + (*largest - *smallest) / std::max(volume[cell], 1e-300);
+  entry.stencil = detail::build_smoothing_stencil(dual, entry.walls, entry.centres, entry.wall_centres,
+                                                  diffusivity, points);
+
+  entry.node_weights.resize(dual.point_cells.size());
+  parallel_cells(points.size(), [&](std::size_t node) {
+    const std::size_t begin = dual.point_cell_offsets[node];
+    const std::size_t end = dual.point_cell_offsets[node + 1];
+    if (begin == end) return;
+    pseudo_laplacian_weights(points[node], dual.point_cells.data() + begin, end - begin, entry.centres,
+                             dual.planar, entry.node_weights.data() + begin);
+  });
+  return geometry;
+}
+
+}  // namespace
+
 std::vector<Vector3> AraMethod::move(const MixedMesh& mesh, const BoundaryMotion& boundary, const Log& log) {
   report_ = {};
+  Stopwatch total_clock;
+  Stopwatch stage_clock;
   if (boundary.roles.size() != mesh.points.size() || boundary.displacement.size() != mesh.points.size() ||
       boundary.rotation.size() != mesh.points.size())
     throw Error("ara: boundary motion does not match the mesh (" + std::to_string(boundary.roles.size()) +
                 " entries for " + std::to_string(mesh.points.size()) + " points)");
-  const DualMesh dual = detail::build_dual_mesh(mesh);
-  const WallFaces walls = detail::wall_faces(dual, boundary.marker_roles);
-  if (walls.faces.empty()) throw Error("ara: the mesh has no wall boundary (every marker slides)");
+  const std::uint64_t connectivity = detail::connectivity_hash(mesh);
+  const std::uint64_t point_bits = detail::points_hash(mesh.points);
+  report_.geometry_cached = geometry_ && geometry_->connectivity == connectivity &&
+                            geometry_->points == point_bits &&
+                            geometry_->marker_roles == boundary.marker_roles;
+  if (!report_.geometry_cached) {
+    geometry_.reset();  // release the old one before building the new one
+    geometry_ = prepare_geometry(mesh, boundary.marker_roles, connectivity, point_bits);
+  }
+  const detail::AraGeometry& geometry = *geometry_;
+  const DualMesh& dual = geometry.dual;
+  const WallFaces& walls = geometry.walls;
+  const std::vector<Vector3>& centres = geometry.centres;
   const std::size_t cells = dual.cell_count();
   const std::vector<Vector3>& points = mesh.points;
+  report_.setup_seconds = stage_clock.seconds();
 
-  std::vector<Vector3> centres(cells);
-  std::vector<double> volume(cells);
-  parallel_cells(cells, [&](std::size_t cell) {
-    centres[cell] = detail::cell_centre(dual, cell, points);
-    volume[cell] = detail::cell_measure(dual, cell, points);
-  });
-
-  // 1. Distance metrics: cached nearest faces when they fit this mesh.
-  Stopwatch distance_clock;
-  const bool cache_fits = nearest_.cell_count == cells && nearest_.wall_face_count == walls.faces.size() &&
-                          nearest_.faces.size() == cells;
-  if (!cache_fits && !options_.cache_file.empty() && std::filesystem::exists(options_.cache_file)) {
+  // 1. Distance metrics: nearest faces from memory or the cache file when they were found
+  // on a mesh with this connectivity and these wall faces.
+  stage_clock = Stopwatch();
+  auto fits = [&](const NearestFaces& nearest) {
+    return nearest.mesh_hash == geometry.nearest_key && nearest.point_count == points.size() &&
+           nearest.cell_count == cells && nearest.wall_face_count == walls.faces.size() &&
+           nearest.faces.size() == cells;
+  };
+  const bool from_file =
+      !fits(nearest_) && !options_.cache_file.empty() && std::filesystem::exists(options_.cache_file);
+  if (from_file) {
     NearestFaces stored = read_nearest_faces(options_.cache_file);
-    if (stored.cell_count == cells && stored.wall_face_count == walls.faces.size()) {
-      nearest_ = std::move(stored);
-      log.detail("ara: nearest faces read from " + options_.cache_file.string());
+    if (!fits(stored)) {
+      std::ostringstream message;
+      message << options_.cache_file.string() << ": nearest-face cache made for another mesh ("
+              << stored.point_count << " points, " << stored.cell_count << " cells, "
+              << stored.wall_face_count << " wall faces, hash " << std::hex << stored.mesh_hash << std::dec
+              << "; this mesh has " << points.size() << ", " << cells << ", " << walls.faces.size()
+              << ", hash " << std::hex << geometry.nearest_key << "); delete it to search again";
+      throw Error(message.str());
     }
+    nearest_ = std::move(stored);
+    log.detail("ara: nearest faces read from " + options_.cache_file.string());
   }
-  report_.cache_used = nearest_.cell_count == cells && nearest_.wall_face_count == walls.faces.size() &&
-                       nearest_.faces.size() == cells;
+  report_.cache_used = fits(nearest_);
   if (!report_.cache_used) {
     nearest_ = detail::find_nearest_faces(dual, walls, centres, points, options_.candidates);
+    nearest_.point_count = points.size();
+    nearest_.mesh_hash = geometry.nearest_key;
     if (!options_.cache_file.empty()) write_nearest_faces(nearest_, options_.cache_file);
   }
   std::vector<double> first_distance;
   std::vector<double> second_distance;
   detail::nearest_distances(dual, walls, nearest_, centres, points, first_distance, second_distance);
-  report_.distance_seconds = distance_clock.seconds();
+  report_.distance_seconds = stage_clock.seconds();
 
   // 2. Rigid-body initialisation (eq. 9–11).
+  stage_clock = Stopwatch();
   const std::vector<FaceMotion> faces = wall_motion(dual, walls, mesh, boundary);
   const bool rotate = options_.predictor == Predictor::rotation;
   std::vector<Vector3> velocity(cells);  // u = x′ − x
@@ -269,56 +254,66 @@ std::vector<Vector3> AraMethod::move(const MixedMesh& mesh, const BoundaryMotion
     velocity[cell] = beta * moved[0] + (1.0 - beta) * moved[1] - x;  // eq. 10
     spin[cell] = beta * rotation[0] + (1.0 - beta) * rotation[1];
   });
+  report_.predictor_seconds = stage_clock.seconds();
 
-  // 3. Smoothing of u and w on the dual mesh (eq. 12–21), Baker's τ from the input mesh.
-  double smallest = std::numeric_limits<double>::infinity();
-  double largest = 0.0;
-  for (double entry : volume) {
-    smallest = std::min(smallest, std::abs(entry));
-    largest = std::max(largest, std::abs(entry));
-  }
-  std::vector<double> diffusivity(cells);
-  for (std::size_t cell = 0; cell < cells; ++cell)
-    diffusivity[cell] = 1.0 + (largest - smallest) / std::max(std::abs(volume[cell]), 1e-300);  // eq. 13
-  std::vector<Vector3> wall_centres(faces.size());
+  // 3. Smoothing of w and u on the dual mesh (eq. 12–21), the predictor as first guess.
+  stage_clock = Stopwatch();
   std::vector<Vector3> wall_velocity(faces.size());
-  std::vector<Vector3> wall_spin(faces.size());
+  std::vector<Vector3> wall_spin(faces.size(), Vector3::Zero());
   double largest_spin = 0.0;
   for (std::size_t wall = 0; wall < faces.size(); ++wall) {
-    wall_centres[wall] = faces[wall].centre;
     wall_velocity[wall] = faces[wall].displacement;
-    wall_spin[wall] = rotate ? faces[wall].rotation : Vector3::Zero();
+    if (rotate) wall_spin[wall] = faces[wall].rotation;
     largest_spin = std::max(largest_spin, wall_spin[wall].norm());
   }
-  const Stencil stencil = build_stencil(dual, walls, centres, wall_centres, diffusivity, points);
-  const auto colours = detail::colour_cells(dual);
+  const bool gauss_seidel = options_.solver == Solver::gauss_seidel;
+  if (gauss_seidel && geometry.colours.empty()) geometry_->colours = detail::colour_cells(dual);
+  auto solve = [&](std::vector<Vector3>& values, const std::vector<Vector3>& source, double scale) {
+    detail::SolveSettings settings;
+    settings.relaxation = options_.relaxation;
+    settings.tolerance = options_.tolerance;
+    settings.scale = scale;
+    settings.max_iterations = options_.max_iterations;
+    return gauss_seidel ? detail::gauss_seidel(values, source, geometry.stencil, geometry.colours, settings)
+                        : detail::conjugate_gradient(values, source, geometry.stencil, settings);
+  };
   // The angular velocity first (eq. 21), so that the velocity smoothing can transport
   // neighbour velocities rigidly with it.
-  if (rotate) smooth(spin, wall_spin, stencil, colours, options_, largest_spin);
-  Transport transport;
+  if (rotate) {
+    const detail::SolveResult spun =
+        solve(spin, detail::smoothing_source(geometry.stencil, wall_spin, {}), largest_spin);
+    report_.spin_iterations = spun.iterations;
+  }
+  // R − I of every cell, for the transport and the interpolation to nodes.
   std::vector<Eigen::Matrix3d> cell_turn;
+  detail::Transport transport;
   std::vector<Eigen::Matrix3d> wall_turn;
-  if (rotate && options_.smoothing == Smoothing::rigid_transport) {
+  if (rotate) {
     cell_turn.resize(cells);
-    wall_turn.resize(faces.size());
     parallel_cells(cells, [&](std::size_t cell) {
       cell_turn[cell] = detail::rotation_matrix(spin[cell]) - Eigen::Matrix3d::Identity();
     });
-    for (std::size_t wall = 0; wall < faces.size(); ++wall)
-      wall_turn[wall] = detail::rotation_matrix(wall_spin[wall]) - Eigen::Matrix3d::Identity();
-    transport = {&cell_turn, &wall_turn, &centres, &wall_centres};
+    if (options_.smoothing == Smoothing::rigid_transport) {
+      wall_turn.resize(faces.size());
+      for (std::size_t wall = 0; wall < faces.size(); ++wall)
+        wall_turn[wall] = detail::rotation_matrix(wall_spin[wall]) - Eigen::Matrix3d::Identity();
+      transport = {&cell_turn, &wall_turn, &centres, &geometry.wall_centres};
+    }
   }
-  const auto [iterations, residual] =
-      smooth(velocity, wall_velocity, stencil, colours, options_, boundary.largest_displacement(), transport);
-  report_.smoothing_iterations = iterations;
-  report_.smoothing_residual = residual;
+  const detail::SolveResult smoothed =
+      solve(velocity, detail::smoothing_source(geometry.stencil, wall_velocity, transport),
+            boundary.largest_displacement());
+  report_.smoothing_iterations = smoothed.iterations;
+  report_.smoothing_residual = smoothed.residual;
+  report_.smoothing_seconds = stage_clock.seconds();
 
   // 4. Interpolation to nodes (eq. 22–26).
+  stage_clock = Stopwatch();
   std::vector<Vector3> result(points.size());
-  std::vector<double> weight_start(dual.point_cells.size());
   auto candidate = [&](std::size_t node, std::size_t cell) -> Vector3 {
-    // x′_j = R_j(x_i) + Δx_j: the node moved rigidly with cell j (eq. 23).
-    return detail::rotate(spin[cell], points[node] - centres[cell]) + centres[cell] + velocity[cell];
+    // x′_j = R_j(x_i − c_j) + c_j + u_j: the node moved rigidly with cell j (eq. 23).
+    if (!rotate) return points[node] + velocity[cell];
+    return points[node] + velocity[cell] + cell_turn[cell] * (points[node] - centres[cell]);
   };
   auto interpolate = [&](std::size_t node, int repair_pass,
                          const std::vector<double>* deformed_volume) -> Vector3 {
@@ -334,7 +329,7 @@ std::vector<Vector3> AraMethod::move(const MixedMesh& mesh, const BoundaryMotion
     double total = 0.0;
     for (std::size_t slot = begin; slot < end; ++slot) {
       const std::size_t cell = static_cast<std::size_t>(dual.point_cells[slot]);
-      double weight = weight_start[slot];
+      double weight = geometry.node_weights[slot];
       if (repair_pass > 0) {
         // Eq. 27 (reconstructed): ω′ = ω (1 + m V_ave / V_j); inverted and tiny cells are
         // clamped to a thousandth of V_ave, so they weigh most.
@@ -359,13 +354,13 @@ std::vector<Vector3> AraMethod::move(const MixedMesh& mesh, const BoundaryMotion
       result[node] = points[node] + boundary.displacement[node];
       return;
     }
-    pseudo_laplacian_weights(points[node], dual.point_cells.data() + begin, end - begin, centres, dual.planar,
-                             weight_start.data() + begin);
     result[node] = interpolate(node, 0, nullptr);
   });
   detail::project_sliding(boundary, points, result);
+  report_.interpolation_seconds = stage_clock.seconds();
 
   // 5. Negative-volume repair (eq. 27), up to repair_passes passes.
+  stage_clock = Stopwatch();
   std::vector<double> deformed_volume(cells);
   std::vector<char> invalid(cells, 0);
   auto check = [&]() {
@@ -412,12 +407,17 @@ std::vector<Vector3> AraMethod::move(const MixedMesh& mesh, const BoundaryMotion
   if (inverted > best_inverted) result = std::move(best);
   report_.inverted_after_repair = std::min(inverted, best_inverted);
 
+  report_.repair_seconds = stage_clock.seconds();
+  report_.total_seconds = total_clock.seconds();
   std::ostringstream summary;
   summary << "ara: " << cells << " cells, " << walls.boundary_count << " boundaries, distances "
           << (report_.cache_used ? "(cached) " : "") << report_.distance_seconds << " s, smoothing "
-          << iterations << " iterations (r.m.s. " << residual << "), inverted after interpolation "
+          << (gauss_seidel ? "(Gauss-Seidel) " : "(conjugate gradients) ") << report_.spin_iterations << " + "
+          << smoothed.iterations << " iterations (r.m.s. " << smoothed.residual << ") "
+          << report_.smoothing_seconds << " s, inverted after interpolation "
           << report_.inverted_after_interpolation << ", after " << report_.repair_passes << " repair passes "
-          << inverted;
+          << inverted << "; setup " << (report_.geometry_cached ? "(cached) " : "") << report_.setup_seconds
+          << " s, total " << report_.total_seconds << " s";
   log.detail(summary.str());
   return result;
 }

@@ -29,6 +29,9 @@ AraOptions read_ara_options(config::Section& section) {
   std::string smoothing = "rigid_transport";
   section.read_choice("smoothing", smoothing, {"rigid_transport", "plain"});
   options.smoothing = smoothing == "plain" ? Smoothing::plain : Smoothing::rigid_transport;
+  std::string solver = "conjugate_gradient";
+  section.read_choice("solver", solver, {"conjugate_gradient", "gauss_seidel"});
+  options.solver = solver == "gauss_seidel" ? Solver::gauss_seidel : Solver::conjugate_gradient;
   std::string form = "exponential";
   section.read_choice("blend", form, {"exponential", "linear"});
   options.blend_form = form == "exponential" ? BlendForm::exponential : BlendForm::linear;
@@ -48,14 +51,17 @@ std::unique_ptr<DeformationMethod> make_ara_method(config::Section* options) {
 }
 
 namespace {
-constexpr char cache_magic[8] = {'M', 'X', 'A', 'R', 'A', 'N', 'F', '1'};
-}
+// Version 2: magic, point, cell and wall-face counts, mesh hash, then the face pairs.
+constexpr char cache_magic[8] = {'M', 'X', 'A', 'R', 'A', 'N', 'F', '2'};
+constexpr char previous_magic[8] = {'M', 'X', 'A', 'R', 'A', 'N', 'F', '1'};
+}  // namespace
 
 void write_nearest_faces(const NearestFaces& nearest, const std::filesystem::path& file) {
   write_atomically(file, [&](const std::filesystem::path& temporary) {
     std::ofstream stream(temporary, std::ios::binary);
     if (!stream) throw Error(temporary.string() + ": cannot open for writing");
-    const std::uint64_t counts[2] = {nearest.cell_count, nearest.wall_face_count};
+    const std::uint64_t counts[4] = {nearest.point_count, nearest.cell_count, nearest.wall_face_count,
+                                     nearest.mesh_hash};
     stream.write(cache_magic, sizeof cache_magic);
     stream.write(reinterpret_cast<const char*>(counts), sizeof counts);
     stream.write(reinterpret_cast<const char*>(nearest.faces.data()),
@@ -68,16 +74,21 @@ NearestFaces read_nearest_faces(const std::filesystem::path& file) {
   std::ifstream stream(file, std::ios::binary);
   if (!stream) throw Error(file.string() + ": cannot open the nearest-face cache");
   char magic[8] = {};
-  std::uint64_t counts[2] = {0, 0};
+  std::uint64_t counts[4] = {0, 0, 0, 0};
   stream.read(magic, sizeof magic);
+  if (stream && std::memcmp(magic, previous_magic, sizeof magic) == 0)
+    throw Error(file.string() + ": nearest-face cache of an older mixmesh (no mesh hash); delete it");
   stream.read(reinterpret_cast<char*>(counts), sizeof counts);
   if (!stream || std::memcmp(magic, cache_magic, sizeof magic) != 0)
     throw Error(file.string() + ": not a mixmesh nearest-face cache");
-  if (counts[0] > (std::uint64_t{1} << 34) || counts[1] > (std::uint64_t{1} << 34))
-    throw Error(file.string() + ": implausible counts in the nearest-face cache");
+  for (int entry = 0; entry < 3; ++entry)
+    if (counts[entry] > (std::uint64_t{1} << 34))
+      throw Error(file.string() + ": implausible counts in the nearest-face cache");
   NearestFaces nearest;
-  nearest.cell_count = counts[0];
-  nearest.wall_face_count = counts[1];
+  nearest.point_count = counts[0];
+  nearest.cell_count = counts[1];
+  nearest.wall_face_count = counts[2];
+  nearest.mesh_hash = counts[3];
   nearest.faces.resize(nearest.cell_count);
   stream.read(reinterpret_cast<char*>(nearest.faces.data()),
               static_cast<std::streamsize>(nearest.faces.size() * sizeof(nearest.faces[0])));

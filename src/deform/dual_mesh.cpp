@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cstring>
 #include <numeric>
 #include <sstream>
 
@@ -263,6 +264,51 @@ std::string cell_kind_name(int kind) {
   if (kind == planar_triangle) return "triangle";
   if (kind == planar_quad) return "quad";
   return std::string(name(static_cast<CellType>(kind)));
+}
+
+namespace {
+
+// One 64-bit word into the hash: multiply–rotate mixing, order dependent.
+std::uint64_t mix(std::uint64_t hash, std::uint64_t word) {
+  hash ^= word * 0x9E3779B97F4A7C15ull;
+  hash = (hash << 27) | (hash >> 37);
+  return hash * 0xBF58476D1CE4E5B9ull + 0x94D049BB133111EBull;
+}
+
+template <class Value>
+std::uint64_t mix_all(std::uint64_t hash, const std::vector<Value>& values) {
+  hash = mix(hash, values.size());
+  for (const Value& value : values) hash = mix(hash, static_cast<std::uint64_t>(value));
+  return hash;
+}
+
+}  // namespace
+
+std::uint64_t connectivity_hash(const MixedMesh& mesh) {
+  std::uint64_t hash = mix(0x6D69786D657368ull, mesh.points.size());
+  for (CellType type : all_cell_types) hash = mix_all(hash, mesh.block(type).nodes);
+  for (FaceType type : all_face_types) {
+    hash = mix_all(hash, mesh.faces(type).nodes);
+    hash = mix_all(hash, mesh.faces(type).markers);
+  }
+  for (const auto& block : mesh.planar_cells) hash = mix_all(hash, block.nodes);
+  hash = mix_all(hash, mesh.boundary_edges.nodes);
+  return mix_all(hash, mesh.boundary_edges.markers);
+}
+
+std::uint64_t points_hash(const std::vector<Vector3>& points) {
+  std::uint64_t hash = mix(0x706F696E7473ull, points.size());
+  for (const Vector3& point : points)
+    for (int axis = 0; axis < 3; ++axis) {
+      std::uint64_t bits = 0;
+      std::memcpy(&bits, &point[axis], sizeof bits);
+      hash = mix(hash, bits);
+    }
+  return hash;
+}
+
+std::uint64_t combine_hash(std::uint64_t hash, const std::vector<Index>& values) {
+  return mix_all(hash, values);
 }
 
 std::vector<std::vector<Index>> colour_cells(const DualMesh& dual) {

@@ -69,6 +69,13 @@ bool cell_valid(const DualMesh& dual, std::size_t cell, const std::vector<Vector
 // "hexahedron", "quad", …
 std::string cell_kind_name(int kind);
 
+// 64-bit hashes to recognise a mesh again (not cryptographic): of the connectivity
+// (cells, boundary faces or edges with their markers, point count), of the points' bits,
+// and of a list of indices mixed into a hash.
+std::uint64_t connectivity_hash(const MixedMesh& mesh);
+std::uint64_t points_hash(const std::vector<Vector3>& points);
+std::uint64_t combine_hash(std::uint64_t hash, const std::vector<Index>& values);
+
 // Greedy colouring of the dual graph: no two cells sharing a face have one colour.
 // Returns the cells of each colour.
 std::vector<std::vector<Index>> colour_cells(const DualMesh& dual);

@@ -1,6 +1,8 @@
 // ARA deformation of a 1 M-node hexahedral O-grid around an ellipse (200 × 100 × 50
 // nodes), the body pitched 5° about its quarter chord: the first deformation (nearest
-// faces searched) and a repeat with the cached nearest faces.
+// faces searched, geometry prepared) and a repeat with both cached, each with the
+// conjugate-gradient smoothing (argument 0) and the Gauss–Seidel one (argument 1); and
+// the whole checked step as the command runs it. Counters: seconds per stage.
 //   deform_ara_benchmark --benchmark_repetitions=3
 #include <benchmark/benchmark.h>
 
@@ -36,16 +38,33 @@ deform::Motion pitch() {
   return motion;
 }
 
+void report_stages(benchmark::State& state, const deform::AraReport& report) {
+  state.counters["setup_s"] = report.setup_seconds;
+  state.counters["distance_s"] = report.distance_seconds;
+  state.counters["predictor_s"] = report.predictor_seconds;
+  state.counters["smoothing_s"] = report.smoothing_seconds;
+  state.counters["interpolation_s"] = report.interpolation_seconds;
+  state.counters["repair_s"] = report.repair_seconds;
+  state.counters["spin_iterations"] = report.spin_iterations;
+  state.counters["iterations"] = report.smoothing_iterations;
+  state.counters["total_s"] = report.total_seconds;
+}
+
+deform::AraOptions solver_options(const benchmark::State& state) {
+  deform::AraOptions options;
+  options.solver = state.range(0) == 1 ? deform::Solver::gauss_seidel : deform::Solver::conjugate_gradient;
+  return options;
+}
+
 void first_deformation(benchmark::State& state) {
   const MixedMesh& mesh = million_node_mesh();
   const deform::BoundaryMotion boundary = deform::boundary_motion(mesh, mesh, pitch(), 1);
   const Log log;
   for (auto _ : state) {
-    deform::AraMethod method;
+    deform::AraMethod method(solver_options(state));
     benchmark::DoNotOptimize(method.move(mesh, boundary, log));
     state.counters["inverted"] = static_cast<double>(method.last_report().inverted_after_repair);
-    state.counters["iterations"] = method.last_report().smoothing_iterations;
-    state.counters["distance_s"] = method.last_report().distance_seconds;
+    report_stages(state, method.last_report());
   }
   state.counters["nodes"] = static_cast<double>(mesh.points.size());
 }
@@ -54,12 +73,13 @@ void cached_deformation(benchmark::State& state) {
   const MixedMesh& mesh = million_node_mesh();
   const deform::BoundaryMotion boundary = deform::boundary_motion(mesh, mesh, pitch(), 1);
   const Log log;
-  deform::AraMethod method;
-  method.move(mesh, boundary, log);  // fills the cache
+  deform::AraMethod method(solver_options(state));
+  method.move(mesh, boundary, log);  // fills the caches
   for (auto _ : state) {
     benchmark::DoNotOptimize(method.move(mesh, boundary, log));
     state.counters["cache_used"] = method.last_report().cache_used;
-    state.counters["distance_s"] = method.last_report().distance_seconds;
+    state.counters["geometry_cached"] = method.last_report().geometry_cached;
+    report_stages(state, method.last_report());
   }
 }
 
@@ -71,11 +91,13 @@ void checked_step(benchmark::State& state) {
     deform::AraMethod method;
     const deform::DeformResult result = deform::deform_step(mesh, mesh, pitch(), 1, method, log);
     state.counters["valid"] = result.valid;
+    state.counters["ara_s"] = method.last_report().total_seconds;
+    state.counters["step_s"] = result.seconds;
   }
 }
 
-BENCHMARK(first_deformation)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
-BENCHMARK(cached_deformation)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
+BENCHMARK(first_deformation)->Arg(0)->Arg(1)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
+BENCHMARK(cached_deformation)->Arg(0)->Arg(1)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
 BENCHMARK(checked_step)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
 
 }  // namespace

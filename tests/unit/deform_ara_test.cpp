@@ -181,6 +181,111 @@ TEST(DeformAra, CacheFileRejectsOtherFiles) {
   EXPECT_THROW(read_nearest_faces(file), Error);
 }
 
+TEST(DeformAra, OlderAndForeignCacheFilesAreRejectedWithOneLine) {
+  const auto file = std::filesystem::temp_directory_path() / "mixmesh_deform_foreign_cache.bin";
+  std::filesystem::remove(file);
+  AraOptions options;
+  options.cache_file = file;
+  OGrid grid;
+  const MixedMesh mesh = testing::planar_o_grid(grid);
+  AraMethod writer(options);
+  writer.move(mesh, boundary_motion(mesh, mesh, rotate_wall(5.0), 1), quiet);
+  ASSERT_TRUE(std::filesystem::exists(file));
+  EXPECT_EQ(read_nearest_faces(file).point_count, mesh.points.size());
+
+  // Another mesh with the same file: an error naming the file, nothing overwritten.
+  grid.around = 40;
+  const MixedMesh other = testing::planar_o_grid(grid);
+  AraMethod reader(options);
+  try {
+    reader.move(other, boundary_motion(other, other, rotate_wall(5.0), 1), quiet);
+    ADD_FAILURE() << "a cache made for another mesh was accepted";
+  } catch (const Error& error) {
+    const std::string message = error.what();
+    EXPECT_NE(message.find(file.string()), std::string::npos) << message;
+    EXPECT_NE(message.find("another mesh"), std::string::npos) << message;
+    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+  }
+  EXPECT_EQ(read_nearest_faces(file).point_count, mesh.points.size());
+
+  // The same connectivity with other wall markers (the far field slides): other wall faces.
+  BoundaryMotion sliding_far_field = boundary_motion(mesh, mesh, rotate_wall(5.0), 1);
+  sliding_far_field.marker_roles[static_cast<std::size_t>(mesh.find_marker("farfield"))] =
+      MarkerRole::sliding;
+  AraMethod third(options);
+  EXPECT_THROW(third.move(mesh, sliding_far_field, quiet), Error);
+
+  // A cache file of the first format (no mesh hash).
+  {
+    std::ofstream stream(file, std::ios::binary);
+    stream << "MXARANF1" << std::string(16, '\0');
+  }
+  EXPECT_THROW(read_nearest_faces(file), Error);
+  std::filesystem::remove(file);
+}
+
+TEST(DeformAra, GeometryIsKeptForTheSameMeshAndRebuiltForMovedPoints) {
+  const MixedMesh mesh = testing::planar_o_grid(OGrid{});
+  AraMethod method;
+  const Motion motion = rotate_wall(10.0);
+  const DeformResult first = deform_step(mesh, mesh, motion, 1, method, quiet);
+  EXPECT_FALSE(method.last_report().geometry_cached);
+  deform_step(mesh, mesh, motion, 1, method, quiet);
+  EXPECT_TRUE(method.last_report().geometry_cached);
+  // A deformed mesh has the same connectivity: the nearest faces carry over, the
+  // geometry (centres, σ, interpolation weights) is rebuilt.
+  const DeformResult moved = deform_step(first.mesh, mesh, rotate_wall(5.0), 1, method, quiet);
+  EXPECT_FALSE(method.last_report().geometry_cached);
+  EXPECT_TRUE(method.last_report().cache_used);
+  EXPECT_TRUE(moved.valid);
+  method.clear_cache();
+  deform_step(mesh, mesh, motion, 1, method, quiet);
+  EXPECT_FALSE(method.last_report().geometry_cached);
+  EXPECT_FALSE(method.last_report().cache_used);
+}
+
+// Both solvers of the smoothing system, run to a tight tolerance, give the same mesh;
+// conjugate gradients in far fewer iterations.
+void expect_solvers_agree(const MixedMesh& mesh, const Motion& motion, Smoothing smoothing) {
+  AraOptions options;
+  options.smoothing = smoothing;
+  options.tolerance = 1e-11;
+  options.max_iterations = 100000;
+  options.solver = Solver::gauss_seidel;
+  AraMethod seidel(options);
+  const std::vector<Vector3> by_seidel = seidel.move(mesh, boundary_motion(mesh, mesh, motion, 1), quiet);
+  options.solver = Solver::conjugate_gradient;
+  AraMethod gradients(options);
+  const std::vector<Vector3> by_gradients =
+      gradients.move(mesh, boundary_motion(mesh, mesh, motion, 1), quiet);
+  ASSERT_EQ(by_seidel.size(), by_gradients.size());
+  double largest = 0.0;
+  double difference = 0.0;
+  for (std::size_t node = 0; node < mesh.points.size(); ++node) {
+    largest = std::max(largest, (by_seidel[node] - mesh.points[node]).norm());
+    difference = std::max(difference, (by_seidel[node] - by_gradients[node]).norm());
+  }
+  EXPECT_GT(largest, 0.01);
+  EXPECT_LT(difference, 1e-7 * largest);
+  EXPECT_LE(seidel.last_report().smoothing_residual, 1e-11);
+  EXPECT_LE(gradients.last_report().smoothing_residual, 1e-11);
+  EXPECT_LT(gradients.last_report().smoothing_iterations, seidel.last_report().smoothing_iterations);
+}
+
+TEST(DeformAra, GaussSeidelAndConjugateGradientsConvergeToTheSameMesh) {
+  expect_solvers_agree(testing::planar_o_grid(OGrid{}), rotate_wall(15.0), Smoothing::rigid_transport);
+  expect_solvers_agree(testing::planar_o_grid(OGrid{}), rotate_wall(15.0), Smoothing::plain);
+  OGrid grid;
+  grid.around = 24;
+  grid.outward = 10;
+  grid.first_spacing = 0.02;
+  grid.layers_z = 2;
+  Motion motion = rotate_wall(10.0);
+  motion.symmetry = {"bottom", "top"};
+  expect_solvers_agree(testing::volume_o_grid(grid, VolumeKind::hex_and_prism), motion,
+                       Smoothing::rigid_transport);
+}
+
 class DeformAraVolume : public ::testing::TestWithParam<VolumeKind> {};
 
 TEST_P(DeformAraVolume, RotationWithSymmetryPlanesStaysValid) {

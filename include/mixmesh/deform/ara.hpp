@@ -6,8 +6,9 @@
 //   2. predictor          each centre moves rigidly with its nearest face on each
 //                         boundary (eq. 9), blended by β(α) (eq. 10–11); the cell's
 //                         rotation is blended the same way
-//   3. corrector          Gauss–Seidel smoothing of the mesh velocity u and angular
-//                         velocity w with Baker's diffusivity (eq. 12–21)
+//   3. corrector          smoothing of the mesh velocity u and angular velocity w with
+//                         Baker's diffusivity (eq. 12–21): conjugate gradients or the
+//                         paper's Gauss–Seidel on the same linear system
 //   4. interpolation      each node moves with the rigid motion of its cells, weighted
 //                         by pseudo-Laplacian weights (eq. 22–26)
 //   5. repair             nodes of inverted cells are re-interpolated with weights that
@@ -19,6 +20,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -27,6 +29,10 @@
 #include "mixmesh/deform/deform.hpp"
 
 namespace mixmesh::deform {
+
+namespace detail {
+struct AraGeometry;
+}
 
 // β(α), eq. 11 (reconstructed; the extracted text reads only "β = [exp(c(α))]^γ").
 //   exponential  β = ½ + ½ (1 − e^{−γ s}) / (1 − e^{−γ}),  s = 2α − 1 ∈ [0, 1]
@@ -49,31 +55,43 @@ enum class Predictor { rotation, translation };
 // grid lines. With the translation predictor both are the same.
 enum class Smoothing { rigid_transport, plain };
 
+// Solver of the smoothing system (eq. 19 at its fixed point, a symmetric positive
+// definite system): Jacobi-preconditioned conjugate gradients (the default, far fewer
+// sweeps on large meshes) or the paper's point Gauss–Seidel with relaxation ε. Both stop
+// on the same r.m.s. measure and converge to the same field.
+enum class Solver { conjugate_gradient, gauss_seidel };
+
 struct AraOptions {
   Predictor predictor = Predictor::rotation;
   Smoothing smoothing = Smoothing::rigid_transport;
+  Solver solver = Solver::conjugate_gradient;
   BlendForm blend_form = BlendForm::exponential;
   double gamma = 4.0;
   // Candidate boundary faces per k-d tree query; the exact distance picks among them.
   int candidates = 8;
-  // Smoothing (eq. 19): global relaxation ε, r.m.s. tolerance relative to the largest
-  // boundary displacement (rotation: relative to the largest boundary rotation),
-  // iteration cap.
+  // Smoothing (eq. 19): global relaxation ε (Gauss–Seidel only), tolerance on the r.m.s.
+  // change one Jacobi update would make, relative to the largest boundary displacement
+  // (rotation: relative to the largest boundary rotation), iteration cap.
   double relaxation = 0.8;
   double tolerance = 1e-4;
   int max_iterations = 500;
   int repair_passes = 10;
-  // File of cached nearest faces, read when it matches the mesh and written when not
-  // (empty: cache in memory only, across the steps of a sequence).
+  // File of cached nearest faces: read when it exists (an error when it was made for
+  // another mesh), written when it does not (empty: cache in memory only, across the
+  // steps of a sequence).
   std::filesystem::path cache_file;
 };
 
 // Nearest boundary faces of every cell: faces[c] = {nearest face on the nearest
 // boundary, nearest face on the second-nearest boundary} (-1 when there is only one
-// boundary), as indices into the method's list of wall faces.
+// boundary), as indices into the method's list of wall faces. The faces stay valid
+// while the connectivity and the wall markers stay the same (mesh_hash); the points
+// may move, as in a sequence of deformations.
 struct NearestFaces {
+  std::size_t point_count = 0;
   std::size_t cell_count = 0;
   std::size_t wall_face_count = 0;
+  std::uint64_t mesh_hash = 0;  // of the cells, the boundary faces and the wall faces
   std::vector<std::array<Index, 2>> faces;
 };
 void write_nearest_faces(const NearestFaces& nearest, const std::filesystem::path& file);
@@ -81,8 +99,18 @@ void write_nearest_faces(const NearestFaces& nearest, const std::filesystem::pat
 NearestFaces read_nearest_faces(const std::filesystem::path& file);
 
 struct AraReport {
+  // Wall-clock seconds of each stage: dual mesh and wall faces, distances, predictor,
+  // smoothing (stencil and both solves), interpolation, repair, and the whole move.
+  double setup_seconds = 0.0;
   double distance_seconds = 0.0;
-  bool cache_used = false;
+  double predictor_seconds = 0.0;
+  double smoothing_seconds = 0.0;
+  double interpolation_seconds = 0.0;
+  double repair_seconds = 0.0;
+  double total_seconds = 0.0;
+  bool cache_used = false;       // nearest faces from the cache
+  bool geometry_cached = false;  // dual mesh, stencil and weights of the same undeformed mesh
+  int spin_iterations = 0;
   int smoothing_iterations = 0;
   double smoothing_residual = 0.0;
   int repair_passes = 0;
@@ -98,16 +126,22 @@ class AraMethod : public DeformationMethod {
 
   const AraReport& last_report() const { return report_; }
   const NearestFaces& nearest_faces() const { return nearest_; }
-  // Forget the cached nearest faces (the next move searches again).
-  void clear_cache() { nearest_ = {}; }
+  // Forget the cached nearest faces and geometry (the next move starts afresh).
+  void clear_cache() {
+    nearest_ = {};
+    geometry_.reset();
+  }
 
  private:
   AraOptions options_;
   NearestFaces nearest_;
+  // What depends only on the undeformed mesh and its markers' roles (dual mesh, wall
+  // faces, smoothing stencil, interpolation weights), reused while they stay the same.
+  std::shared_ptr<detail::AraGeometry> geometry_;
   AraReport report_;
 };
 
-// Reads gamma, predictor, smoothing, blend, candidates, relaxation, tolerance, max_iterations,
+// Reads gamma, predictor, smoothing, solver, blend, candidates, relaxation, tolerance, max_iterations,
 // repair_passes, cache from an [ara] table.
 AraOptions read_ara_options(config::Section& section);
 std::unique_ptr<DeformationMethod> make_ara_method(config::Section* options);
