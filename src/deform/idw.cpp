@@ -8,7 +8,9 @@
 #include <nanoflann.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdint>
 #include <memory>
 #include <string>
 
@@ -163,6 +165,40 @@ void apply_symmetry(const IdwInput& input, const IdwOptions& options, std::vecto
   }
 }
 
+// Spreads the low 21 bits of a value to every third bit (Morton interleaving).
+std::uint64_t spread_bits(std::uint64_t value) {
+  value &= 0x1fffff;
+  value = (value | value << 32) & 0x1f00000000ffffULL;
+  value = (value | value << 16) & 0x1f0000ff0000ffULL;
+  value = (value | value << 8) & 0x100f00f00f00f00fULL;
+  value = (value | value << 4) & 0x10c30c30c30c30c3ULL;
+  value = (value | value << 2) & 0x1249249249249249ULL;
+  return value;
+}
+
+// Volume points in Morton (Z-curve) order over their bounding box: consecutive points of a
+// parallel chunk are then close, walk the boundary tree alike and find its data in cache,
+// however the mesh numbers its nodes.
+std::vector<std::size_t> morton_order(const std::vector<Vector3>& points) {
+  Eigen::AlignedBox3d box;
+  for (const Vector3& point : points) box.extend(point);
+  const double extent = points.empty() ? 0.0 : box.sizes().maxCoeff();
+  const double scale = extent > 0.0 ? static_cast<double>((1 << 21) - 1) / extent : 0.0;
+  std::vector<std::uint64_t> codes(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const Eigen::Array3d cell = ((points[i] - box.min()) * scale).array().floor();
+    codes[i] = spread_bits(static_cast<std::uint64_t>(cell.x())) |
+               spread_bits(static_cast<std::uint64_t>(cell.y())) << 1 |
+               spread_bits(static_cast<std::uint64_t>(cell.z())) << 2;
+  }
+  std::vector<std::size_t> order(points.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](std::size_t left, std::size_t right) {
+    return codes[left] < codes[right] || (codes[left] == codes[right] && left < right);
+  });
+  return order;
+}
+
 struct TreeStatistics {
   std::size_t cluster_terms = 0;
   std::size_t node_terms = 0;
@@ -187,18 +223,36 @@ void deform_simple(const IdwInput& input, const IdwOptions& options, IdwResult& 
       rotations.insert(rotations.end(), body.rotations.begin(), body.rotations.end());
   }
   const IdwTree tree(positions, displacements, rotations, options.exponent, options.leaf_size);
+  const std::vector<std::size_t> order = morton_order(input.volume_points);
+  // Groups of consecutive points in Morton order, fixed whatever the scheduling, so the
+  // result does not depend on the thread count.
+  const std::size_t group_size = IdwTree::max_group_size;
+  const std::size_t group_count = (order.size() + group_size - 1) / group_size;
   tbb::enumerable_thread_specific<TreeStatistics> statistics;
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, input.volume_points.size(), options.grain_size),
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(
+                        0, group_count, std::max<std::size_t>(1, options.grain_size / group_size)),
                     [&](const tbb::blocked_range<std::size_t>& range) {
                       TreeStatistics& local = statistics.local();
-                      for (std::size_t i = range.begin(); i != range.end(); ++i) {
-                        const IdwTree::Evaluation evaluation =
-                            options.exact ? tree.evaluate_exact(input.volume_points[i])
-                                          : tree.evaluate(input.volume_points[i], options.tree_tolerance);
-                        result.displacements[i] = evaluation.displacement;
-                        local.cluster_terms += evaluation.cluster_terms;
-                        local.node_terms += evaluation.node_terms;
-                        local.error_bound = std::max(local.error_bound, evaluation.error_bound);
+                      std::array<Vector3, IdwTree::max_group_size> points;
+                      std::array<IdwTree::Evaluation, IdwTree::max_group_size> evaluations;
+                      for (std::size_t group = range.begin(); group != range.end(); ++group) {
+                        const std::size_t first = group * group_size;
+                        const std::size_t count = std::min(group_size, order.size() - first);
+                        for (std::size_t k = 0; k < count; ++k)
+                          points[k] = input.volume_points[order[first + k]];
+                        if (options.exact) {
+                          for (std::size_t k = 0; k < count; ++k)
+                            evaluations[k] = tree.evaluate_exact(points[k]);
+                        } else {
+                          tree.evaluate_group(points.data(), count, options.tree_tolerance,
+                                              evaluations.data());
+                        }
+                        for (std::size_t k = 0; k < count; ++k) {
+                          result.displacements[order[first + k]] = evaluations[k].displacement;
+                          local.cluster_terms += evaluations[k].cluster_terms;
+                          local.node_terms += evaluations[k].node_terms;
+                          local.error_bound = std::max(local.error_bound, evaluations[k].error_bound);
+                        }
                       }
                     });
   for (const TreeStatistics& local : statistics) {

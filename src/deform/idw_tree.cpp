@@ -1,296 +1,397 @@
 #include "mixmesh/deform/idw_tree.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
-#include <numeric>
-#include <string>
-
-#include "mixmesh/core/error.hpp"
+#include <utility>
 
 namespace mixmesh::deform {
 
 namespace {
 
-// Traversal depth is bounded by the tree height (balanced splits), far below this.
+// Traversal depth is bounded by the tree height, under 64 + 32 (idw_tree_build.cpp).
 constexpr int stack_capacity = 128;
+// A group of points sums a cluster into its expansion only when the cluster's radius is at
+// least this many times the group's.
+constexpr double group_scale = 4.0;
 // Opening angle of the first pass that estimates the denominator.
-constexpr double coarse_opening = 0.5;
+constexpr double coarse_opening = 0.8;
+// Bound on a cluster's share of the denominator error (relative to the coarse estimate), so
+// that the certified bound's D − E_D stays well away from zero.
+constexpr double denominator_tolerance = 1e-3;
 // Clusters seen under a larger ratio radius/distance are never aggregated (the bound
 // grows without limit as the ratio approaches 1).
 constexpr double max_opening = 0.75;
 
-// (xx, yy, zz, xy, xz, yz) products of a vector with itself.
-Eigen::Matrix<double, 6, 1> symmetric_products(const Vector3& v) {
-  Eigen::Matrix<double, 6, 1> products;
-  products << v.x() * v.x(), v.y() * v.y(), v.z() * v.z(), v.x() * v.y(), v.x() * v.z(), v.y() * v.z();
-  return products;
-}
-
-// x^-q, by repeated multiplication for the usual whole exponents.
-double inverse_power(double x, double q) {
-  if (q == std::floor(q) && q <= 16.0) {
-    double product = 1.0;
-    for (int k = 0; k < static_cast<int>(q); ++k) product *= x;
-    return 1.0 / product;
-  }
-  return std::pow(x, -q);
+// x^k for a small whole k.
+double whole_power(double x, int k) {
+  double product = 1.0;
+  for (int m = 0; m < k; ++m) product *= x;
+  return product;
 }
 
 }  // namespace
 
 // Running sums of one evaluation: D = Σ w, N = Σ w a, W = Σ w B, and the error bounds.
-struct IdwTree::Sums {
+// Monopole estimates of the denominator and of the displacement.
+struct IdwTree::Estimate {
   double denominator = 0.0;
-  Vector3 numerator = Vector3::Zero();
+  Vector3 displacement = Vector3::Zero();
+};
+
+struct IdwTree::Sums {
+  Eigen::Vector4d totals = Eigen::Vector4d::Zero();  // (N, D): N = Σ w a, D = Σ w
   Eigen::Matrix3d weighted_b = Eigen::Matrix3d::Zero();
   double denominator_bound = 0.0;
-  double numerator_bound = 0.0;
-  int hit = -1;  // a boundary node at the evaluation point: its value is the answer
+  double value_bound = 0.0;            // Σ V over accepted clusters (see header)
+  Vector3 estimate = Vector3::Zero();  // ũ
+  int hit = -1;                        // a boundary node at the evaluation point: its value is the answer
   std::size_t cluster_terms = 0;
   std::size_t node_terms = 0;
 };
 
-IdwTree::IdwTree(const std::vector<Vector3>& positions, const std::vector<Vector3>& displacements,
-                 const std::vector<Eigen::Matrix3d>& rotations, double exponent, int leaf_size)
-    : exponent_(exponent),
-      whole_exponent_(exponent == std::floor(exponent) && exponent <= 8.0 ? static_cast<int>(exponent) : 0),
-      with_rotations_(!rotations.empty()) {
-  if (positions.empty()) throw Error("idw tree: no boundary nodes");
-  if (displacements.size() != positions.size())
-    throw Error("idw tree: " + std::to_string(displacements.size()) + " displacements for " +
-                std::to_string(positions.size()) + " boundary nodes");
-  if (with_rotations_ && rotations.size() != positions.size())
-    throw Error("idw tree: " + std::to_string(rotations.size()) + " rotations for " +
-                std::to_string(positions.size()) + " boundary nodes");
-  if (!(exponent > 0.0) || !std::isfinite(exponent))
-    throw Error("idw tree: exponent must be positive, got " + std::to_string(exponent));
-  if (leaf_size < 1) throw Error("idw tree: leaf size must be at least 1, got " + std::to_string(leaf_size));
-
-  std::vector<int> order(positions.size());
-  std::iota(order.begin(), order.end(), 0);
-  clusters_.reserve(2 * positions.size() / static_cast<std::size_t>(leaf_size) + 2);
-  // Build on an index permutation, then gather the node data into tree order so that
-  // every cluster is a contiguous range.
-  {
-    // Recursive median splits along the longest box side; `order` follows the swaps.
-    struct Range {
-      int begin, end, cluster;
-    };
-    clusters_.push_back(Cluster{});
-    std::vector<Range> pending{{0, static_cast<int>(positions.size()), 0}};
-    while (!pending.empty()) {
-      const Range range = pending.back();
-      pending.pop_back();
-      clusters_[static_cast<std::size_t>(range.cluster)].begin = range.begin;
-      clusters_[static_cast<std::size_t>(range.cluster)].end = range.end;
-      if (range.end - range.begin <= leaf_size) continue;
-      Eigen::Vector3d low = positions[static_cast<std::size_t>(order[static_cast<std::size_t>(range.begin)])];
-      Eigen::Vector3d high = low;
-      for (int k = range.begin; k < range.end; ++k) {
-        const Vector3& p = positions[static_cast<std::size_t>(order[static_cast<std::size_t>(k)])];
-        low = low.cwiseMin(p);
-        high = high.cwiseMax(p);
-      }
-      int axis = 0;
-      (high - low).maxCoeff(&axis);
-      const int middle = range.begin + (range.end - range.begin) / 2;
-      std::nth_element(order.begin() + range.begin, order.begin() + middle, order.begin() + range.end,
-                       [&](int left, int right) {
-                         return positions[static_cast<std::size_t>(left)][axis] <
-                                positions[static_cast<std::size_t>(right)][axis];
-                       });
-      const int first_child = static_cast<int>(clusters_.size());
-      clusters_[static_cast<std::size_t>(range.cluster)].first_child = first_child;
-      clusters_.push_back(Cluster{});
-      clusters_.push_back(Cluster{});
-      pending.push_back({range.begin, middle, first_child});
-      pending.push_back({middle, range.end, first_child + 1});
-    }
-  }
-  const std::size_t count = positions.size();
-  positions_.resize(count);
-  displacements_.resize(count);
-  a_.resize(count);
-  if (with_rotations_) b_.resize(count);
-  for (std::size_t k = 0; k < count; ++k) {
-    const std::size_t source = static_cast<std::size_t>(order[k]);
-    positions_[k] = positions[source];
-    displacements_[k] = displacements[source];
-    if (!positions_[k].allFinite() || !displacements_[k].allFinite())
-      throw Error("idw tree: boundary node " + std::to_string(source) + " has a non-finite coordinate");
-    if (with_rotations_) {
-      b_[k] = rotations[source] - Eigen::Matrix3d::Identity();
-      a_[k] = displacements_[k] - b_[k] * positions_[k];
-    } else {
-      a_[k] = displacements_[k];
-    }
-  }
-  moments_.resize(clusters_.size());
-  if (with_rotations_) rotation_moments_.resize(clusters_.size());
-  for (std::size_t index = 0; index < clusters_.size(); ++index) summarise(index);
-}
-
-void IdwTree::summarise(std::size_t index) {
-  Cluster& cluster = clusters_[index];
-  Moments& moments = moments_[index];
-  const double count = cluster.end - cluster.begin;
-  Vector3 centroid = Vector3::Zero();
-  for (int k = cluster.begin; k < cluster.end; ++k) centroid += positions_[static_cast<std::size_t>(k)];
-  cluster.centroid = centroid / count;
-  for (int k = cluster.begin; k < cluster.end; ++k) {
-    const std::size_t j = static_cast<std::size_t>(k);
-    const Vector3 offset = positions_[j] - cluster.centroid;
-    cluster.radius = std::max(cluster.radius, offset.norm());
-    const Eigen::Matrix<double, 6, 1> products = symmetric_products(offset);
-    moments.sum_a += a_[j];
-    moments.moment_a += offset * a_[j].transpose();
-    moments.moment2 += products;
-    moments.moment2_a += a_[j] * products.transpose();
-    moments.sum_displacement_norm += displacements_[j].norm();
-    if (with_rotations_) {
-      RotationMoments& rotation = rotation_moments_[index];
-      rotation.sum_b += b_[j];
-      for (int axis = 0; axis < 3; ++axis)
-        rotation.moment_b[static_cast<std::size_t>(axis)] += offset[axis] * b_[j];
-      for (int entry = 0; entry < 6; ++entry)
-        rotation.moment2_b[static_cast<std::size_t>(entry)] += products[entry] * b_[j];
-      rotation.sum_b_norm += b_[j].norm();
-    }
-  }
-}
-
-double IdwTree::inverse_distance_power(double inverse_distance) const {
+// G(θ) as numerator / denominator, so that acceptance tests need no division.
+template <int WholeExponent>
+std::pair<double, double> IdwTree::tail_factor(double ratio) const {
+  const double complement = 1.0 - ratio;
+  if constexpr (WholeExponent == 3)  // the default exponent, spelled out for speed
+    return {10.0 + ratio * (-15.0 + 6.0 * ratio), complement * complement * complement};
   if (whole_exponent_ > 0) {
-    double product = inverse_distance;
-    for (int k = 1; k < whole_exponent_; ++k) product *= inverse_distance;
-    return product;
+    double polynomial = 0.0;
+    for (int k = whole_exponent_ - 1; k >= 0; --k)
+      polynomial = polynomial * ratio + tail_polynomial_[static_cast<std::size_t>(k)];
+    return {polynomial, whole_power(complement, whole_exponent_)};
   }
+  return {lagrange_factor_, std::pow(complement, exponent_ + 3.0)};
+}
+
+// d^-p from 1/d.
+template <int WholeExponent>
+double IdwTree::inverse_distance_power(double inverse_distance) const {
+  if constexpr (WholeExponent > 0) return whole_power(inverse_distance, WholeExponent);
   return std::pow(inverse_distance, exponent_);
 }
 
+// w = r^-p from r²; the common exponents avoid pow, which dominates the cost otherwise.
+template <int WholeExponent>
 double IdwTree::weight(double squared_distance) const {
-  // The common exponents avoid pow, which dominates the cost otherwise.
-  if (exponent_ == 3.0) return 1.0 / (squared_distance * std::sqrt(squared_distance));
-  if (exponent_ == 2.0) return 1.0 / squared_distance;
-  if (exponent_ == 4.0) return 1.0 / (squared_distance * squared_distance);
-  if (exponent_ == 5.0) return 1.0 / (squared_distance * squared_distance * std::sqrt(squared_distance));
+  if constexpr (WholeExponent == 2) return 1.0 / squared_distance;
+  if constexpr (WholeExponent == 3) return 1.0 / (squared_distance * std::sqrt(squared_distance));
+  if constexpr (WholeExponent == 4) return 1.0 / (squared_distance * squared_distance);
   return std::pow(squared_distance, -0.5 * exponent_);
 }
 
-template <bool WithRotations>
+template <bool WithRotations, int WholeExponent>
 void IdwTree::add_nodes(const Vector3& point, int begin, int end, Sums& sums) const {
+  const double px = point.x(), py = point.y(), pz = point.z();
+  double denominator = 0.0, nx = 0.0, ny = 0.0, nz = 0.0;
+  double nearest = std::numeric_limits<double>::infinity();
   for (int k = begin; k < end; ++k) {
     const std::size_t j = static_cast<std::size_t>(k);
-    const double squared_distance = (point - positions_[j]).squaredNorm();
-    if (squared_distance == 0.0) {
-      sums.hit = k;
-      return;
-    }
-    const double w = weight(squared_distance);
-    sums.denominator += w;
-    sums.numerator += w * a_[j];
+    const double dx = px - x_[j], dy = py - y_[j], dz = pz - z_[j];
+    const double squared_distance = dx * dx + dy * dy + dz * dz;
+    nearest = std::min(nearest, squared_distance);
+    // At a coincident node w is infinite; the sums are discarded below.
+    const double w = weight<WholeExponent>(squared_distance);
+    denominator += w;
+    nx += w * ax_[j], ny += w * ay_[j], nz += w * az_[j];
     if constexpr (WithRotations) sums.weighted_b += w * b_[j];
   }
+  if (nearest == 0.0) {
+    for (int k = begin; k < end; ++k) {
+      const std::size_t j = static_cast<std::size_t>(k);
+      if (px == x_[j] && py == y_[j] && pz == z_[j]) {
+        sums.hit = k;
+        return;
+      }
+    }
+  }
+  sums.totals += Eigen::Vector4d(nx, ny, nz, denominator);
   sums.node_terms += static_cast<std::size_t>(end - begin);
 }
 
 template <bool WithRotations>
 void IdwTree::add_cluster(const Vector3& offset, double inverse_distance, double w, std::size_t index,
                           Sums& sums) const {
-  const Cluster& cluster = clusters_[index];
-  const Moments& moments = moments_[index];
-  const Vector3 direction = offset * inverse_distance;
-  // ∇_y |x − y|^-p at y = c, and ½ δᵀHδ = half_hessian [(p+2)(r̂·δ)² − |δ|²].
-  const Vector3 gradient = (exponent_ * w * inverse_distance) * direction;
-  const double half_hessian = 0.5 * exponent_ * w * inverse_distance * inverse_distance;
-  // (r̂·δ)² = quadratic · (δ_k δ_l) with off-diagonal entries counted twice.
-  Eigen::Matrix<double, 6, 1> quadratic = symmetric_products(direction);
-  quadratic.tail<3>() *= 2.0;
-  quadratic *= exponent_ + 2.0;
-  quadratic.head<3>().array() -= 1.0;
-  quadratic *= half_hessian;
-  sums.denominator += w * (cluster.end - cluster.begin) + quadratic.dot(moments.moment2);
-  sums.numerator +=
-      w * moments.sum_a + moments.moment_a.transpose() * gradient + moments.moment2_a * quadratic;
+  const double rx = offset.x() * inverse_distance, ry = offset.y() * inverse_distance,
+               rz = offset.z() * inverse_distance;
+  // ∇_y |x − y|^-p at y = c is g = p w/d r̂, and ½ δᵀHδ = h [(p+2)(r̂·δ)² − |δ|²], h = ½ p w/d²:
+  // q holds the coefficients of the six second moments (off-diagonal ones counted twice).
+  const double gradient_scale = exponent_ * w * inverse_distance;
+  const double gx = gradient_scale * rx, gy = gradient_scale * ry, gz = gradient_scale * rz;
+  const double h = 0.5 * exponent_ * w * inverse_distance * inverse_distance;
+  const double hp = h * (exponent_ + 2.0), hp2 = 2.0 * hp;
+  Eigen::Matrix<double, 10, 1> coefficients;
+  coefficients << w, gx, gy, gz, hp * rx * rx - h, hp * ry * ry - h, hp * rz * rz - h, hp2 * rx * ry,
+      hp2 * rx * rz, hp2 * ry * rz;
+  sums.totals.noalias() += moments_[index] * coefficients;
   if constexpr (WithRotations) {
     const RotationMoments& rotation = rotation_moments_[index];
-    Eigen::Matrix3d weighted = w * rotation.sum_b;
-    for (int axis = 0; axis < 3; ++axis)
-      weighted += gradient[axis] * rotation.moment_b[static_cast<std::size_t>(axis)];
+    Eigen::Matrix3d weighted = w * rotation.sum_b + gx * rotation.moment_b[0] + gy * rotation.moment_b[1] +
+                               gz * rotation.moment_b[2];
     for (int entry = 0; entry < 6; ++entry)
-      weighted += quadratic[entry] * rotation.moment2_b[static_cast<std::size_t>(entry)];
+      weighted += coefficients[4 + entry] * rotation.moment2_b[static_cast<std::size_t>(entry)];
     sums.weighted_b += weighted;
   }
   ++sums.cluster_terms;
 }
 
-double IdwTree::coarse_denominator(const Vector3& point) const {
-  double denominator = 0.0;
+template <bool WithRotations, int WholeExponent>
+IdwTree::Estimate IdwTree::coarse_estimate(const Vector3& point) const {
+  Estimate estimate;
+  Vector3 numerator = Vector3::Zero();
   int stack[stack_capacity];
   int top = 0;
   stack[top++] = 0;
   while (top > 0) {
-    const Cluster& cluster = clusters_[static_cast<std::size_t>(stack[--top])];
-    const double distance = (point - cluster.centroid).norm();
-    if (cluster.radius <= coarse_opening * distance) {
-      denominator += weight(distance * distance) * (cluster.end - cluster.begin);
+    const std::size_t index = static_cast<std::size_t>(stack[--top]);
+    const Cluster& cluster = clusters_[index];
+    const Vector3 offset = point - cluster.centroid;
+    const double squared_distance = offset.squaredNorm();
+    if (cluster.radius * cluster.radius <= coarse_opening * coarse_opening * squared_distance) {
+      const double weight_sum = weight<WholeExponent>(squared_distance) * (cluster.end - cluster.begin);
+      estimate.denominator += weight_sum;
+      Vector3 value = cluster.mean_displacement;
+      if constexpr (WithRotations) value += rotation_moments_[index].mean_b * offset;
+      numerator += weight_sum * value;
     } else if (cluster.first_child < 0) {
       for (int k = cluster.begin; k < cluster.end; ++k) {
-        const double squared_distance = (point - positions_[static_cast<std::size_t>(k)]).squaredNorm();
-        if (squared_distance > 0.0) denominator += weight(squared_distance);
+        const std::size_t j = static_cast<std::size_t>(k);
+        const Vector3 node_offset(point.x() - x_[j], point.y() - y_[j], point.z() - z_[j]);
+        const double node_squared = node_offset.squaredNorm();
+        if (node_squared == 0.0) continue;
+        const double w = weight<WholeExponent>(node_squared);
+        estimate.denominator += w;
+        Vector3 value = displacements_[j];
+        if constexpr (WithRotations) value += b_[j] * node_offset;
+        numerator += w * value;
       }
     } else {
       stack[top++] = cluster.first_child;
       stack[top++] = cluster.first_child + 1;
     }
   }
-  return denominator;
+  if (estimate.denominator > 0.0) estimate.displacement = numerator / estimate.denominator;
+  return estimate;
 }
 
-template <bool WithRotations>
-IdwTree::Evaluation IdwTree::evaluate_tree(const Vector3& point, double tolerance) const {
-  Sums sums;
-  const double budget = tolerance * coarse_denominator(point);
-  const double p = exponent_;
-  // Lagrange remainder of (1 − θ)^-p after the θ² term: binom(p+2, 3) θ³ (1 − θ)^-(p+3).
-  const double remainder_factor = p * (p + 1.0) * (p + 2.0) / 6.0;
-  const double tail_power = p + 3.0;
+template <bool WithRotations, int WholeExponent>
+void IdwTree::traverse(const Vector3& point, double value_budget, double denominator_budget, int root,
+                       Sums& sums) const {
   int stack[stack_capacity];
   int top = 0;
-  stack[top++] = 0;
+  stack[top++] = root;
   while (top > 0 && sums.hit < 0) {
     const std::size_t index = static_cast<std::size_t>(stack[--top]);
     const Cluster& cluster = clusters_[index];
     const Vector3 offset = point - cluster.centroid;
     const double squared_distance = offset.squaredNorm();
     if (cluster.radius * cluster.radius < max_opening * max_opening * squared_distance) {
-      const double inverse_distance = 1.0 / std::sqrt(squared_distance);
-      const double ratio = cluster.radius * inverse_distance;
-      const double w = inverse_distance_power(inverse_distance);
-      // Bound on the remainder of each weight in the cluster (Gegenbauer tail, see header).
-      const double remainder =
-          w * remainder_factor * ratio * ratio * ratio * inverse_power(1.0 - ratio, tail_power);
-      const double count = cluster.end - cluster.begin;
-      if (count * remainder <= budget) {
-        const double distance = squared_distance * inverse_distance;
-        add_cluster<WithRotations>(offset, inverse_distance, w, index, sums);
-        sums.denominator_bound += count * remainder;
-        double value_bound = moments_[index].sum_displacement_norm;
-        if constexpr (WithRotations)
-          value_bound += rotation_moments_[index].sum_b_norm * (distance + cluster.radius);
-        sums.numerator_bound += remainder * value_bound;
-        continue;
+      // 1/d² and d are independent, so the division and the square root overlap.
+      const double inverse_squared = 1.0 / squared_distance;
+      const double inverse_distance = std::sqrt(squared_distance) * inverse_squared;
+      const double w = inverse_distance_power<WholeExponent>(inverse_distance);
+      // Bound on each node's weight remainder per |δ_j|³: r = d^-(p+3) G(θ) (see header), kept
+      // as a fraction r = scaled / tail_denominator.
+      const auto [tail_numerator, tail_denominator] =
+          tail_factor<WholeExponent>(cluster.radius * inverse_distance);
+      const double scaled = w * inverse_distance * inverse_distance * inverse_distance * tail_numerator;
+      if (scaled * cluster.cubic_spread <= denominator_budget * tail_denominator) {
+        // V = r (T + T' d + S |v̄ − ũ|), see header.
+        Vector3 mean_value = cluster.mean_displacement;
+        double spread = cluster.value_spread;
+        if constexpr (WithRotations) {
+          const RotationMoments& rotation = rotation_moments_[index];
+          mean_value += rotation.mean_b * offset;
+          spread += rotation.rotation_spread * squared_distance * inverse_distance;
+        }
+        const double value_factor = spread + cluster.cubic_spread * (mean_value - sums.estimate).norm();
+        if (scaled * value_factor <= value_budget * tail_denominator) {
+          const double remainder_per_cube = scaled / tail_denominator;
+          add_cluster<WithRotations>(offset, inverse_distance, w, index, sums);
+          sums.denominator_bound += remainder_per_cube * cluster.cubic_spread;
+          sums.value_bound += remainder_per_cube * value_factor;
+          continue;
+        }
       }
     }
     if (cluster.first_child < 0) {
-      add_nodes<WithRotations>(point, cluster.begin, cluster.end, sums);
+      add_nodes<WithRotations, WholeExponent>(point, cluster.begin, cluster.end, sums);
     } else {
       stack[top++] = cluster.first_child;
       stack[top++] = cluster.first_child + 1;
     }
   }
+}
+
+template <bool WithRotations, int WholeExponent>
+IdwTree::Evaluation IdwTree::evaluate_tree(const Vector3& point, double tolerance) const {
+  Sums sums;
+  const Estimate estimate = coarse_estimate<WithRotations, WholeExponent>(point);
+  sums.estimate = estimate.displacement;
+  traverse<WithRotations, WholeExponent>(point, tolerance * value_scale_ * estimate.denominator,
+                                         denominator_tolerance * estimate.denominator, 0, sums);
   return finish<WithRotations>(point, sums);
+}
+
+// Far field of a group of points as a quadratic in ε = x − g about the group centre g: row k
+// of the outputs (N_x, N_y, N_z, D) is constant_k + linear_k·ε + ½ εᵀ quadratic[k] ε.
+struct IdwTree::LocalExpansion {
+  Eigen::Vector4d constant = Eigen::Vector4d::Zero();
+  Eigen::Matrix<double, 4, 3> linear = Eigen::Matrix<double, 4, 3>::Zero();
+  std::array<Eigen::Matrix3d, 4> quadratic{Eigen::Matrix3d::Zero(), Eigen::Matrix3d::Zero(),
+                                           Eigen::Matrix3d::Zero(), Eigen::Matrix3d::Zero()};
+  double denominator_bound = 0.0;  // Σ r S' over the accepted clusters
+  double value_bound = 0.0;        // Σ r (T' + S' |ū − ũ_g|)
+  std::size_t cluster_terms = 0;
+
+  Eigen::Vector4d at(const Vector3& epsilon) const {
+    Eigen::Vector4d value = constant + linear * epsilon;
+    for (int k = 0; k < 4; ++k)
+      value[k] += 0.5 * epsilon.dot(quadratic[static_cast<std::size_t>(k)] * epsilon);
+    return value;
+  }
+};
+
+// A cluster seen from every point x = g + ε of a group: w(x − x_j) is expanded to second order
+// in η_j = δ_j − ε about R = g − c, w ≈ w₀ + ∇·η + ½ ηᵀHη, and summed over the cluster's nodes.
+template <int WholeExponent>
+void IdwTree::add_cluster_to_group(const Vector3& offset, double inverse_distance, double w,
+                                   std::size_t index, LocalExpansion& local) const {
+  const Moments& moments = moments_[index];
+  const Vector3 direction = offset * inverse_distance;
+  const Vector3 gradient = (exponent_ * w * inverse_distance) * direction;
+  const double h = exponent_ * w * inverse_distance * inverse_distance;
+  // H = p w/d² [(p+2) r̂r̂ᵀ − I].
+  const Eigen::Matrix3d hessian =
+      h * ((exponent_ + 2.0) * direction * direction.transpose() - Eigen::Matrix3d::Identity());
+  Eigen::Matrix<double, 10, 1> coefficients;
+  coefficients << w, gradient, 0.5 * hessian(0, 0), 0.5 * hessian(1, 1), 0.5 * hessian(2, 2), hessian(0, 1),
+      hessian(0, 2), hessian(1, 2);
+  local.constant.noalias() += moments * coefficients;
+  for (int k = 0; k < 4; ++k) {
+    // Σ a_k [∇·(δ − ε) + ½(δ − ε)ᵀH(δ − ε)]: the ε terms are −ε·(∇ Σa_k + H Σδ a_k) + ½ εᵀ(H Σa_k)ε.
+    const double sum = moments(k, 0);
+    const Vector3 first(moments(k, 1), moments(k, 2), moments(k, 3));
+    local.linear.row(k) -= (sum * gradient + hessian * first).transpose();
+    local.quadratic[static_cast<std::size_t>(k)] += sum * hessian;
+  }
+  ++local.cluster_terms;
+}
+
+template <int WholeExponent>
+void IdwTree::evaluate_group_tree(const Vector3* points, std::size_t count, double tolerance,
+                                  Evaluation* evaluations) const {
+  Vector3 centre = Vector3::Zero();
+  for (std::size_t i = 0; i < count; ++i) centre += points[i];
+  centre /= static_cast<double>(count);
+  double group_radius = 0.0;
+  for (std::size_t i = 0; i < count; ++i) group_radius = std::max(group_radius, (points[i] - centre).norm());
+  std::array<Estimate, max_group_size> estimates;
+  double smallest_denominator = std::numeric_limits<double>::infinity();
+  Vector3 group_estimate = Vector3::Zero();
+  for (std::size_t i = 0; i < count; ++i) {
+    estimates[i] = coarse_estimate<false, WholeExponent>(points[i]);
+    smallest_denominator = std::min(smallest_denominator, estimates[i].denominator);
+    group_estimate += estimates[i].displacement;
+  }
+  group_estimate /= static_cast<double>(count);
+  double estimate_spread = 0.0;
+  for (std::size_t i = 0; i < count; ++i)
+    estimate_spread = std::max(estimate_spread, (estimates[i].displacement - group_estimate).norm());
+  const double value_budget = tolerance * value_scale_ * smallest_denominator;
+  const double denominator_budget = denominator_tolerance * smallest_denominator;
+  const double radius_cube = group_radius * group_radius * group_radius;
+
+  // Clusters far from the whole group go into the local expansion; the others, once no
+  // larger than the group, are left to each point's own traversal.
+  LocalExpansion local;
+  std::vector<int> near;
+  int stack[stack_capacity];
+  int top = 0;
+  stack[top++] = 0;
+  while (top > 0) {
+    const std::size_t index = static_cast<std::size_t>(stack[--top]);
+    const Cluster& cluster = clusters_[index];
+    const Vector3 offset = centre - cluster.centroid;
+    const double squared_distance = offset.squaredNorm();
+    const double reach = cluster.radius + group_radius;  // |η_j| ≤ |δ_j| + |ε| ≤ ρ + σ
+    // The part of the remainder that depends on ε is common to all nodes and adds up
+    // coherently over the clusters, unlike the part in δ_j: only clusters much larger than
+    // the group go into the expansion, so that the ε part stays small.
+    const bool large = cluster.radius >= group_scale * group_radius;
+    if (large && reach * reach < max_opening * max_opening * squared_distance) {
+      const double inverse_squared = 1.0 / squared_distance;
+      const double inverse_distance = std::sqrt(squared_distance) * inverse_squared;
+      const double w = inverse_distance_power<WholeExponent>(inverse_distance);
+      const auto [tail_numerator, tail_denominator] = tail_factor<WholeExponent>(reach * inverse_distance);
+      const double scaled = w * inverse_distance * inverse_distance * inverse_distance * tail_numerator;
+      // (|δ_j| + σ)³ ≤ 4 (|δ_j|³ + σ³): S' and T' bound the sums of (|δ_j| + σ)³ and of
+      // (|δ_j| + σ)³ |u_j − ū|.
+      const double node_count = cluster.end - cluster.begin;
+      const double cubes = 4.0 * (cluster.cubic_spread + node_count * radius_cube);
+      const double spread = 4.0 * (cluster.value_spread + radius_cube * cluster.displacement_spread);
+      if (scaled * cubes <= denominator_budget * tail_denominator) {
+        const double offset_value = (cluster.mean_displacement - group_estimate).norm();
+        if (scaled * (spread + cubes * (offset_value + estimate_spread)) <= value_budget * tail_denominator) {
+          const double remainder_per_cube = scaled / tail_denominator;
+          add_cluster_to_group<WholeExponent>(offset, inverse_distance, w, index, local);
+          local.denominator_bound += remainder_per_cube * cubes;
+          local.value_bound += remainder_per_cube * (spread + cubes * offset_value);
+          continue;
+        }
+      }
+    }
+    if (cluster.first_child < 0 || !large) {
+      near.push_back(static_cast<int>(index));
+    } else {
+      stack[top++] = cluster.first_child;
+      stack[top++] = cluster.first_child + 1;
+    }
+  }
+
+  for (std::size_t i = 0; i < count; ++i) {
+    Sums sums;
+    sums.estimate = estimates[i].displacement;
+    sums.totals = local.at(points[i] - centre);
+    // |v_j − u| ≤ |u_j − ū| + |ū − ũ_g| + |ũ_g − ũ| + |ũ − u|; finish adds the last term.
+    sums.denominator_bound = local.denominator_bound;
+    sums.value_bound =
+        local.value_bound + (group_estimate - estimates[i].displacement).norm() * local.denominator_bound;
+    sums.cluster_terms = local.cluster_terms;
+    const double point_value_budget = tolerance * value_scale_ * estimates[i].denominator;
+    const double point_denominator_budget = denominator_tolerance * estimates[i].denominator;
+    for (const int root : near) {
+      traverse<false, WholeExponent>(points[i], point_value_budget, point_denominator_budget, root, sums);
+      if (sums.hit >= 0) break;
+    }
+    evaluations[i] = finish<false>(points[i], sums);
+  }
+}
+
+void IdwTree::evaluate_group(const Vector3* points, std::size_t count, double tolerance,
+                             Evaluation* evaluations) const {
+  if (with_rotations_ || count < 2) {
+    for (std::size_t i = 0; i < count; ++i) evaluations[i] = evaluate(points[i], tolerance);
+    return;
+  }
+  for (std::size_t first = 0; first < count; first += max_group_size) {
+    const std::size_t size = std::min(max_group_size, count - first);
+    switch (whole_exponent_) {
+      case 2:
+        evaluate_group_tree<2>(points + first, size, tolerance, evaluations + first);
+        break;
+      case 3:
+        evaluate_group_tree<3>(points + first, size, tolerance, evaluations + first);
+        break;
+      case 4:
+        evaluate_group_tree<4>(points + first, size, tolerance, evaluations + first);
+        break;
+      default:
+        evaluate_group_tree<0>(points + first, size, tolerance, evaluations + first);
+    }
+  }
 }
 
 template <bool WithRotations>
@@ -303,32 +404,56 @@ IdwTree::Evaluation IdwTree::finish(const Vector3& point, const Sums& sums) cons
     evaluation.displacement = displacements_[static_cast<std::size_t>(sums.hit)];
     return evaluation;
   }
-  Vector3 numerator = sums.numerator;
+  const double denominator = sums.totals[3];
+  Vector3 numerator = sums.totals.head<3>();
   if constexpr (WithRotations) numerator += sums.weighted_b * point;
-  evaluation.displacement = numerator / sums.denominator;
+  evaluation.displacement = numerator / denominator;
   if (sums.denominator_bound > 0.0) {
-    const double margin = sums.denominator - sums.denominator_bound;
+    const double margin = denominator - sums.denominator_bound;
     evaluation.error_bound =
         margin > 0.0
-            ? (sums.numerator_bound + evaluation.displacement.norm() * sums.denominator_bound) / margin
+            ? (sums.value_bound + (evaluation.displacement - sums.estimate).norm() * sums.denominator_bound) /
+                  margin
             : std::numeric_limits<double>::infinity();
   }
   return evaluation;
 }
 
+template <bool WithRotations, int WholeExponent>
+IdwTree::Evaluation IdwTree::evaluate_exact_sum(const Vector3& point) const {
+  Sums sums;
+  add_nodes<WithRotations, WholeExponent>(point, 0, static_cast<int>(x_.size()), sums);
+  return finish<WithRotations>(point, sums);
+}
+
 IdwTree::Evaluation IdwTree::evaluate(const Vector3& point, double tolerance) const {
-  return with_rotations_ ? evaluate_tree<true>(point, tolerance) : evaluate_tree<false>(point, tolerance);
+  switch (whole_exponent_) {
+    case 2:
+      return with_rotations_ ? evaluate_tree<true, 2>(point, tolerance)
+                             : evaluate_tree<false, 2>(point, tolerance);
+    case 3:
+      return with_rotations_ ? evaluate_tree<true, 3>(point, tolerance)
+                             : evaluate_tree<false, 3>(point, tolerance);
+    case 4:
+      return with_rotations_ ? evaluate_tree<true, 4>(point, tolerance)
+                             : evaluate_tree<false, 4>(point, tolerance);
+    default:
+      return with_rotations_ ? evaluate_tree<true, 0>(point, tolerance)
+                             : evaluate_tree<false, 0>(point, tolerance);
+  }
 }
 
 IdwTree::Evaluation IdwTree::evaluate_exact(const Vector3& point) const {
-  Sums sums;
-  const int count = static_cast<int>(positions_.size());
-  if (with_rotations_) {
-    add_nodes<true>(point, 0, count, sums);
-    return finish<true>(point, sums);
+  switch (whole_exponent_) {
+    case 2:
+      return with_rotations_ ? evaluate_exact_sum<true, 2>(point) : evaluate_exact_sum<false, 2>(point);
+    case 3:
+      return with_rotations_ ? evaluate_exact_sum<true, 3>(point) : evaluate_exact_sum<false, 3>(point);
+    case 4:
+      return with_rotations_ ? evaluate_exact_sum<true, 4>(point) : evaluate_exact_sum<false, 4>(point);
+    default:
+      return with_rotations_ ? evaluate_exact_sum<true, 0>(point) : evaluate_exact_sum<false, 0>(point);
   }
-  add_nodes<false>(point, 0, count, sums);
-  return finish<false>(point, sums);
 }
 
 }  // namespace mixmesh::deform
