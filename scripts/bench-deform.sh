@@ -1,6 +1,7 @@
 #!/bin/sh
 # ARA deformation of a 1 M-node hexahedral mesh: first run and cached repeat (argument /0:
-# conjugate gradients, /1: Gauss–Seidel) and the checked step; median of three
+# conjugate gradients, /1: Gauss–Seidel, /2: conjugate gradients to a 100x tighter
+# tolerance) and the checked step; median of three
 # repetitions each, with wall and CPU time of the whole run and the load before and after
 # (the timings mean little on a loaded machine).
 # Usage: scripts/bench-deform.sh [BUILD_DIR] [BENCHMARK_FILTER]
