@@ -1,7 +1,10 @@
 # IDW parameter study: deform_idw_study (the C++ driver of scripts/idw-study.py) and the
-# study itself on gmsh meshes. The quick variant checks on the square that the rotation
-# term (sr = 2) beats no rotation term (sr = inf) at every st, as the paper finds for
-# rotations; the full study (three shapes, 6 × 6 exponent pairs up to 360°) is heavy.
+# study itself on gmsh meshes. The quick rotation variant checks on the square that the
+# rotation term (sr = 2) beats no rotation term (sr = inf) at every st, as the paper finds
+# for rotations; the quick translation variant checks that sr changes nothing when the body
+# only translates and that st = 1 carries it strictly further than st = 0.5 and st = 4. The
+# full studies (three shapes; rotation 6 × 6 pairs up to 360°, translation 8 × 3 pairs, the
+# paper's combined movements on the rectangle) are heavy, except translation (~10 s).
 if(TARGET mixmesh_deform)
   add_executable(deform_idw_study ${PROJECT_SOURCE_DIR}/tests/bench/deform_idw_study.cpp)
   target_compile_options(deform_idw_study PRIVATE ${mixmesh_warnings})
@@ -13,10 +16,38 @@ if(TARGET mixmesh_deform)
                    --quick --require-angle 45 --check-rotation-term)
   set_tests_properties(deform_idw_study_quick PROPERTIES LABELS regression)
 
+  add_test(NAME deform_idw_study_translation_quick
+           COMMAND ${MIXMESH_PYTHON} ${PROJECT_SOURCE_DIR}/scripts/idw-study.py
+                   --program $<TARGET_FILE:deform_idw_study> --out ${CMAKE_CURRENT_BINARY_DIR}/idw-study-quick
+                   --motion translation --quick --check-translation-exponent)
+  set_tests_properties(deform_idw_study_translation_quick PROPERTIES LABELS regression)
+
+  # Bad input: one clear error line (printed only on the error path, which exits 1).
+  add_test(NAME deform_idw_study_bad_motion
+           COMMAND deform_idw_study no-such.mesh.txt --centre 0,0 --st 1 --sr 2 --max-steps 1 --motion spin)
+  set_tests_properties(deform_idw_study_bad_motion PROPERTIES LABELS regression
+    PASS_REGULAR_EXPRESSION "deform_idw_study: error: --motion: 'spin' is not rotation, translation or combined")
+  add_test(NAME deform_idw_study_missing_mesh
+           COMMAND deform_idw_study no-such.mesh.txt --centre 0,0 --st 1 --sr 2 --max-steps 1 --motion translation)
+  set_tests_properties(deform_idw_study_missing_mesh PROPERTIES LABELS regression
+    PASS_REGULAR_EXPRESSION "deform_idw_study: error: no-such.mesh.txt: cannot open")
+
   add_test(NAME deform_idw_study_full
            COMMAND ${MIXMESH_PYTHON} ${PROJECT_SOURCE_DIR}/scripts/idw-study.py
                    --program $<TARGET_FILE:deform_idw_study> --out ${CMAKE_CURRENT_BINARY_DIR}/idw-study)
   set_tests_properties(deform_idw_study_full PROPERTIES LABELS "regression;heavy")
+  # The translation study is cheap (~10 s): on all three shapes and st = 0.5 … 4, sr changes
+  # nothing and st = 1 goes strictly furthest.
+  add_test(NAME deform_idw_study_translation_full
+           COMMAND ${MIXMESH_PYTHON} ${PROJECT_SOURCE_DIR}/scripts/idw-study.py
+                   --program $<TARGET_FILE:deform_idw_study> --out ${CMAKE_CURRENT_BINARY_DIR}/idw-study
+                   --motion translation --check-translation-exponent)
+  set_tests_properties(deform_idw_study_translation_full PROPERTIES LABELS regression)
+  add_test(NAME deform_idw_study_combined_full
+           COMMAND ${MIXMESH_PYTHON} ${PROJECT_SOURCE_DIR}/scripts/idw-study.py
+                   --program $<TARGET_FILE:deform_idw_study> --out ${CMAKE_CURRENT_BINARY_DIR}/idw-study
+                   --motion combined)
+  set_tests_properties(deform_idw_study_combined_full PROPERTIES LABELS "regression;heavy")
 endif()
 
 # The IDW method through `mixmesh deform` (method = "idw" in the motion file): the NACA 0012
