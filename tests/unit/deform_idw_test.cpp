@@ -199,13 +199,33 @@ TEST(IdwExponents, PureRotationPicksSrTwo) {
   EXPECT_EQ(report.translation_exponent, 1.0);
 }
 
-TEST(IdwExponents, PureTranslationDropsRotationTerm) {
+TEST(IdwExponents, PureTranslationPicksALargeSr) {
   const IdwBody body =
       rigid_body(ellipsoid_nodes(100, 10), Eigen::Matrix3d::Identity(), Vector3::Zero(), Vector3(1, 2, 3));
   const IdwBodyReport report = idw_exponents(body, IdwOptions{});
   EXPECT_NEAR(report.rotation_share, 0.0, 1e-12);
-  EXPECT_TRUE(std::isinf(report.rotation_exponent));
+  EXPECT_EQ(report.rotation_exponent, IdwOptions{}.translation_rotation_exponent);
+  EXPECT_GT(report.rotation_exponent, 2.0);
   EXPECT_EQ(report.translation_exponent, 1.0);
+}
+
+TEST(IdwExponents, ASmallButSteadyRotationKeepsSrTwo) {
+  // The study's rectangle case a: 2° per step about the centroid with a translation of
+  // 0.05 lengths, a rotation share of about 0.19, needs the rotation term at sr = 2.
+  std::vector<Vector3> nodes;
+  for (int k = 0; k <= 50; ++k) {
+    const double x = -0.5 + k / 50.0;
+    nodes.emplace_back(x, -0.1, 0.0);
+    nodes.emplace_back(x, 0.1, 0.0);
+  }
+  Vector3 centroid = Vector3::Zero();
+  for (const Vector3& x : nodes) centroid += x / static_cast<double>(nodes.size());
+  const Eigen::Matrix3d rotation = Eigen::AngleAxisd(2.0 * M_PI / 180.0, Vector3::UnitZ()).toRotationMatrix();
+  const IdwBody body = rigid_body(nodes, rotation, centroid, Vector3(0.0, 0.05, 0.0));
+  const IdwBodyReport report = idw_exponents(body, IdwOptions{});
+  EXPECT_GT(report.rotation_share, 0.1);
+  EXPECT_LT(report.rotation_share, 0.3);
+  EXPECT_EQ(report.rotation_exponent, 2.0);
 }
 
 TEST(IdwExponents, OptionsOverrideTheChoice) {

@@ -82,9 +82,12 @@ struct IdwOptions {
   // (reusing the previous point's nearest node when that is provably close enough;
   // 0 = exact search for every point).
   double distance_accuracy = 0.05;
-  // Automatic exponents: rotation dominates when its share of the rigid-fit motion is at
-  // least this (see idw_exponents).
-  double rotation_dominance = 0.5;
+  // Automatic exponents (see idw_exponents): rotation counts as dominant when its share
+  // of the rigid-fit motion is at least `rotation_dominance`; otherwise sr is
+  // `translation_rotation_exponent`, large but finite, so that the small rotation of a
+  // translation-dominated step is still carried (docs/idw.md, parameter study).
+  double rotation_dominance = 0.1;
+  double translation_rotation_exponent = 8.0;
 
   // Volume nodes within this distance (relative to the boundary's bounding-box
   // diagonal) of a symmetry plane count as on it.
@@ -118,8 +121,9 @@ IdwResult idw_deform(const IdwInput& input, const IdwOptions& options = {});
 
 // Automatic exponents from the optimal-parameters study: st = 1 (best in [1, 2] for
 // rotation and translation alike); sr = 2 when rotation dominates the body's motion
-// (rotation_share ≥ rotation_dominance), otherwise the rotation term is dropped
-// (sr = ∞, the study's optimum for translation). Explicit options override either.
+// (rotation_share ≥ rotation_dominance), otherwise a large sr
+// (translation_rotation_exponent, the paper's advice for translation). Explicit options
+// override either.
 IdwBodyReport idw_exponents(const IdwBody& body, const IdwOptions& options);
 
 inline constexpr double idw_no_rotation_term = std::numeric_limits<double>::infinity();
