@@ -22,6 +22,14 @@ FaceKey sorted(FaceKey key) {
   return key;
 }
 
+std::string seconds_text(double seconds) {
+  std::ostringstream text;
+  text.setf(std::ios::fixed);
+  text.precision(2);
+  text << seconds << " s";
+  return text.str();
+}
+
 std::string point_text(const Vector3& point) {
   std::ostringstream text;
   text << "(" << point.x() << ", " << point.y() << ", " << point.z() << ")";
@@ -42,6 +50,11 @@ void validate(const FarFieldInput& input, const FarFieldOptions& options) {
       !(options.size_gradient > 0.0) || !(options.radius_edge_ratio > 1.0) || options.reference_chord < 0.0)
     throw Error(
         "farfield: radius, far-field size and size gradient must be positive, the radius-edge bound above 1");
+  if (!(options.hull_clearance >= 0.0 && options.hull_clearance < 1.0))
+    throw Error("farfield: hull_clearance must be in [0, 1), not " + std::to_string(options.hull_clearance));
+  if (!(options.edge_protection >= 0.0))
+    throw Error("farfield: edge_protection must not be negative, not " +
+                std::to_string(options.edge_protection));
   if (options.sizing == FarFieldSizing::anisotropic && !(options.layer_growth > 1.0))
     throw Error("farfield: layer_growth must be above 1, not " + std::to_string(options.layer_growth));
   std::map<std::pair<Index, Index>, int> edge_use;
@@ -191,6 +204,7 @@ FarFieldResult farfield(const FarFieldInput& input, const FarFieldOptions& optio
     }
     layers = farfield_parts::layer_points(local_input, footprint, symmetric, options);
     result.layer_points = layers.volume.size() + layers.plane.size();
+    log.info("farfield: " + std::to_string(result.layer_points) + " layer points");
   }
 
   const std::size_t hull_point_count = points.size();
@@ -242,20 +256,53 @@ FarFieldResult farfield(const FarFieldInput& input, const FarFieldOptions& optio
                    tetgen.triangles);
     }
   }
+  const std::vector<Vector3> holes = tetgen.holes;
   tetgen.points = transform_points(forward, tetgen.points);
   tetgen.holes = transform_points(forward, tetgen.holes);
 
-  // Isotropic: one quality run. Anisotropic: the quality run's interior points away
-  // from the layers, plus the layer points, as isolated input points of a run without
-  // -q (refinement would break the thin layer tetrahedra up again). Input points
-  // rather than -i: with -Y, TetGen rejects -i points that encroach a boundary
-  // triangle, which is exactly where the first layers lie.
-  std::vector<Vector3> volume_points;  // original coordinates of the isolated input points
-  farfield_parts::TetgenOutput tetrahedra = farfield_parts::run_tetgen(tetgen);
+  // Pass 1: the quality run (-q, -m), in the preconditioned space when asked.
+  Stopwatch watch;
+  farfield_parts::TetgenOutput tetrahedra;
+  if (options.precondition) {
+    tetgen.time_limit_seconds = options.precondition_time_limit;
+    try {
+      tetrahedra = farfield_parts::run_tetgen(tetgen);
+    } catch (const Error& error) {
+      log.warning(std::string(error.what()) + " in the preconditioned space; running it without the map");
+      forward = backward = Eigen::Matrix3d::Identity();
+      tetgen.points = points;
+      tetgen.holes = holes;
+      tetgen.time_limit_seconds = 0;
+      watch = Stopwatch();
+      tetrahedra = farfield_parts::run_tetgen(tetgen);
+    }
+  } else {
+    tetrahedra = farfield_parts::run_tetgen(tetgen);
+  }
+  log.info("farfield: quality pass " + seconds_text(watch.seconds()) + ", " +
+           std::to_string(tetrahedra.tetrahedra.size()) + " tetrahedra");
+  // Every output point in the original coordinates: input points exactly, TetGen's
+  // own mapped back.
+  std::vector<Vector3> original = points;
+  for (std::size_t node = points.size(); node < tetrahedra.points.size(); ++node)
+    original.push_back(backward * tetrahedra.points[node]);
+
+  // Pass 2 (the exact pass), in the original coordinates, without -q and with every
+  // point as an input point (TetGen adds none on the boundary and refines nothing;
+  // its flips remove slivers):
+  // - anisotropic: the layer points plus the quality pass's points away from them
+  //   (refinement would split the thin layer tetrahedra again; -i under -Y would
+  //   reject the points that encroach a boundary triangle, where the first layers lie);
+  // - preconditioned, when a tetrahedron is flat or inverted once mapped back: the
+  //   map's rounding moves coplanar boundary points (symmetry plane, the flat ends of
+  //   the wake) slightly off their plane, and TetGen fills the dent with a sliver that
+  //   has no volume in the original coordinates. The quality pass's points away from
+  //   the hull are kept; the connectivity is made again where the geometry is exact.
+  std::vector<Vector3> volume_points;  // the isolated input points of pass 2
+  bool second_pass = false;
   if (options.sizing == FarFieldSizing::anisotropic) {
-    std::vector<Vector3> isotropic_points;
-    for (std::size_t node = points.size(); node < tetrahedra.points.size(); ++node)
-      isotropic_points.push_back(backward * tetrahedra.points[node]);
+    const std::vector<Vector3> isotropic_points(original.begin() + static_cast<std::ptrdiff_t>(points.size()),
+                                                original.end());
     std::vector<Vector3> near_layers(points.begin(),
                                      points.begin() + static_cast<std::ptrdiff_t>(hull_point_count));
     near_layers.insert(near_layers.end(), layers.volume.begin(), layers.volume.end());
@@ -263,12 +310,45 @@ FarFieldResult farfield(const FarFieldInput& input, const FarFieldOptions& optio
     volume_points = layers.volume;
     const std::vector<Vector3> kept = farfield_parts::points_beyond(isotropic_points, near_layers, size, 0.7);
     volume_points.insert(volume_points.end(), kept.begin(), kept.end());
-    for (const Vector3& point : volume_points) tetgen.sizes.push_back(size(point));
-    const std::vector<Vector3> mapped = transform_points(forward, volume_points);
-    tetgen.points.insert(tetgen.points.end(), mapped.begin(), mapped.end());
-    tetgen.quality = false;
-    tetrahedra = farfield_parts::run_tetgen(tetgen);
+    second_pass = true;
+  } else if (options.precondition) {
+    Vector3 where = Vector3::Zero();
+    const std::size_t flat = farfield_parts::flat_tetrahedra(original, tetrahedra.tetrahedra, &where);
+    if (flat > 0) {
+      log.info("farfield: " + std::to_string(flat) +
+               " tetrahedra flat or inverted after the map back (the first near " + point_text(where) +
+               "); triangulating again in the original space");
+      // As for the anisotropic pass, points closer than 0.7 × size to a hull node are
+      // left out: near the hull (and its thin faces at the wake's ends) re-inserting
+      // TetGen's points exactly trips its degenerate cases.
+      const std::vector<Vector3> steiner(original.begin() + static_cast<std::ptrdiff_t>(points.size()),
+                                         original.end());
+      const std::vector<Vector3> hull_nodes(points.begin(),
+                                            points.begin() + static_cast<std::ptrdiff_t>(hull_point_count));
+      volume_points = farfield_parts::points_beyond(steiner, hull_nodes, size, 0.7);
+      second_pass = true;
+    }
   }
+  if (second_pass) {
+    const std::size_t offered = volume_points.size();
+    volume_points = farfield_parts::points_off_hull(volume_points, points, hull, options.hull_clearance);
+    if (volume_points.size() < offered)
+      log.info("farfield: " + std::to_string(offered - volume_points.size()) +
+               " volume points left out as too close to a hull triangle");
+    watch = Stopwatch();
+    farfield_parts::TetgenInput exact = tetgen;
+    exact.points = points;
+    exact.points.insert(exact.points.end(), volume_points.begin(), volume_points.end());
+    exact.holes = holes;
+    exact.quality = false;
+    tetrahedra = farfield_parts::run_tetgen(exact);
+    original = tetrahedra.points;  // already in the original coordinates
+    for (std::size_t node = 0; node < exact.points.size(); ++node) original[node] = exact.points[node];
+    log.info("farfield: exact pass " + seconds_text(watch.seconds()) + ", " +
+             std::to_string(volume_points.size()) + " input volume points, " +
+             std::to_string(tetrahedra.tetrahedra.size()) + " tetrahedra");
+  }
+  const std::size_t input_count = points.size() + volume_points.size();
 
   // Back to global numbering: hull nodes keep theirs; every other point a tetrahedron
   // uses is appended in TetGen's order (points TetGen left unused are dropped).
@@ -283,28 +363,24 @@ FarFieldResult farfield(const FarFieldInput& input, const FarFieldOptions& optio
       global[node] = global_of[node];
     } else if (used[node]) {
       global[node] = static_cast<Index>(mesh.points.size());
-      // Input points keep their exact coordinates; only TetGen's own are mapped back.
-      if (node < points.size()) {
-        mesh.points.push_back(points[node]);
-      } else if (node < tetgen.points.size()) {
-        mesh.points.push_back(volume_points[node - points.size()]);
-      } else {
-        mesh.points.push_back(backward * tetrahedra.points[node]);
-        ++result.steiner_points;
-      }
+      mesh.points.push_back(original[node]);
+      if (node >= input_count) ++result.steiner_points;
     }
   }
+  // One orientation for all (TetGen's convention, turned to VTK's): a tetrahedron
+  // left with non-positive volume is reported by the validation, not hidden by a swap.
+  const bool turn = farfield_parts::negative_orientation(original, tetrahedra.tetrahedra);
   for (const auto& local : tetrahedra.tetrahedra) {
     Index nodes[4] = {global[static_cast<std::size_t>(local[0])], global[static_cast<std::size_t>(local[1])],
                       global[static_cast<std::size_t>(local[2])], global[static_cast<std::size_t>(local[3])]};
-    const auto& p = mesh.points;
-    if (tetrahedron_volume6(p[static_cast<std::size_t>(nodes[0])], p[static_cast<std::size_t>(nodes[1])],
-                            p[static_cast<std::size_t>(nodes[2])],
-                            p[static_cast<std::size_t>(nodes[3])]) < 0.0)
-      std::swap(nodes[1], nodes[2]);
+    if (turn) std::swap(nodes[1], nodes[2]);
     mesh.add_cell(CellType::tetrahedron, nodes);
   }
-
+  Vector3 where = Vector3::Zero();
+  result.flat_tetrahedra = farfield_parts::flat_tetrahedra(original, tetrahedra.tetrahedra, &where);
+  if (result.flat_tetrahedra > 0)
+    log.warning("farfield: " + std::to_string(result.flat_tetrahedra) +
+                " tetrahedra have no positive volume, the first near " + point_text(where));
   // Boundary: every tetrahedron face used once must be one of the input triangles.
   const int symmetry_marker = mesh.marker(options.symmetry_marker);
   const int farfield_marker = mesh.marker(options.farfield_marker);
@@ -341,8 +417,16 @@ FarFieldResult farfield(const FarFieldInput& input, const FarFieldOptions& optio
     throw Error("farfield: " + std::to_string(boundary_marker.size() - matched) +
                 " boundary triangles are not faces of the tetrahedra (TetGen changed the boundary)");
 
-  if (!input.metrics.empty())
+  if (!input.metrics.empty()) {
     result.hull_lengths = hull_metric_lengths(mesh, input.hull, input.metric_nodes, input.metrics);
+    const MetricLengthReport& lengths = result.hull_lengths;
+    std::ostringstream text;
+    text.precision(3);
+    text << "farfield: metric edge lengths at the hull: " << lengths.within_range * 100.0
+         << " % in [0.6, 1.6], median " << lengths.median << ", deciles " << lengths.lower_decile << " - "
+         << lengths.upper_decile << " (" << lengths.edges << " edges)";
+    log.info(text.str());
+  }
   log.info("farfield: " + std::to_string(mesh.cell_count(CellType::tetrahedron)) + " tetrahedra, " +
            std::to_string(mesh.points.size() - input.points.size()) + " new points");
   return result;

@@ -56,13 +56,21 @@ LayerPoints layer_points(const FarFieldInput& input, const std::vector<std::arra
 std::vector<Vector3> points_beyond(const std::vector<Vector3>& candidates, const std::vector<Vector3>& near,
                                    const SizeField& size, double ratio);
 
+// The candidates whose distance to the hull surface is at least ratio × their
+// distance to the nearest hull node. A point that hugs the middle of a hull triangle
+// (relative to the triangle's size) can only make flat tetrahedra with it.
+std::vector<Vector3> points_off_hull(const std::vector<Vector3>& candidates,
+                                     const std::vector<Vector3>& points, const std::vector<Triangle>& hull,
+                                     double ratio);
+
 struct TetgenInput {
   std::vector<Vector3> points;      // boundary points, then isolated volume points
   std::vector<double> sizes;        // one per point (-m)
   std::vector<Triangle> triangles;  // the closed boundary
   std::vector<Vector3> holes;
   double radius_edge_ratio = 1.5;
-  bool quality = true;  // -q and -m; off, TetGen only recovers the boundary
+  bool quality = true;              // -q and -m; off, TetGen only recovers the boundary
+  unsigned time_limit_seconds = 0;  // 0: none
 };
 
 struct TetgenOutput {
@@ -73,5 +81,15 @@ struct TetgenOutput {
 // Throws mixmesh::Error naming the stage and a location for a self-intersecting or
 // otherwise unusable boundary.
 TetgenOutput run_tetgen(const TetgenInput& input);
+
+// Whether most tetrahedra have negative volume as numbered (TetGen's convention), so
+// the whole list is to be turned to VTK's positive orientation.
+bool negative_orientation(const std::vector<Vector3>& points,
+                          const std::vector<std::array<Index, 4>>& tetrahedra);
+
+// How many tetrahedra have zero volume or the orientation opposite to the majority;
+// `first`, when given, receives the centre of the first of them.
+std::size_t flat_tetrahedra(const std::vector<Vector3>& points,
+                            const std::vector<std::array<Index, 4>>& tetrahedra, Vector3* first = nullptr);
 
 }  // namespace mixmesh::farfield_parts

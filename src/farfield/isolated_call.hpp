@@ -3,6 +3,7 @@
 // memory twice when it stops on an error): a crash becomes a mixmesh::Error.
 #pragma once
 
+#include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -79,8 +80,10 @@ inline bool receive(Channel& channel, std::string& text) {
 
 // Result types need send(Channel&, const Result&) and receive(Channel&, Result&)
 // overloads that argument-dependent lookup finds (see tetgen_call.cpp).
+// `time_limit_seconds` > 0: the child is stopped (SIGALRM) after that many seconds and
+// the call throws mixmesh::Error saying so.
 template <typename Result, typename Body>
-Result run_isolated(const std::string& what, Body body) {
+Result run_isolated(const std::string& what, Body body, unsigned time_limit_seconds = 0) {
   using isolated_detail::Channel;
   int ends[2];
   if (pipe(ends) != 0)
@@ -93,6 +96,7 @@ Result run_isolated(const std::string& what, Body body) {
   }
   if (child == 0) {
     close(ends[0]);
+    if (time_limit_seconds > 0) alarm(time_limit_seconds);
     Channel channel(ends[1]);
     char tag = 0;
     try {
@@ -119,6 +123,8 @@ Result run_isolated(const std::string& what, Body body) {
   }
   if (complete && tag == 0) return result;
   if (complete && tag == 1) throw Error(message);
+  if (WIFSIGNALED(status) && WTERMSIG(status) == SIGALRM && time_limit_seconds > 0)
+    throw Error("farfield: " + what + " did not finish within " + std::to_string(time_limit_seconds) + " s");
   if (WIFSIGNALED(status))
     throw Error("farfield: " + what + " crashed (signal " + std::to_string(WTERMSIG(status)) + ")");
   throw Error("farfield: " + what + " stopped without a result (exit " + std::to_string(WEXITSTATUS(status)) +

@@ -9,6 +9,7 @@
 #include <nanoflann.hpp>
 
 #include <algorithm>
+#include <limits>
 #include <map>
 #include <numeric>
 
@@ -112,6 +113,28 @@ LayerPoints layer_points(const FarFieldInput& input, const std::vector<std::arra
   }
   const HullTree hull_tree(triangles.begin(), triangles.end());
 
+  // Longest hull edge at each node and the body's thickness below it (along −n to the
+  // first hull triangle not incident to the node; infinite when the ray leaves the hull).
+  std::vector<double> longest(nodes.size(), 0.0),
+      thickness(nodes.size(), std::numeric_limits<double>::infinity());
+  for (std::size_t position = 0; position < nodes.size(); ++position)
+    for (std::size_t other : neighbours[position])
+      longest[position] = std::max(longest[position], (at(nodes[position]) - at(nodes[other])).norm());
+  for (std::size_t position = 0; position < nodes.size(); ++position) {
+    const Vector3& origin = at(nodes[position]);
+    const Index node = nodes[position];
+    const Kernel::Ray_3 ray(
+        Kernel::Point_3(origin.x(), origin.y(), origin.z()),
+        Kernel::Vector_3(-normal[position].x(), -normal[position].y(), -normal[position].z()));
+    const auto hit = hull_tree.first_intersection(ray, [&](std::vector<Triangle3>::const_iterator face) {
+      const auto& corners = input.hull[static_cast<std::size_t>(face - triangles.begin())];
+      return std::find(corners.begin(), corners.end(), node) != corners.end();
+    });
+    if (!hit) continue;
+    if (const Kernel::Point_3* point = boost::get<Kernel::Point_3>(&hit->first))
+      thickness[position] = (Vector3(point->x(), point->y(), point->z()) - origin).norm();
+  }
+
   // Columns: normal spacing from the metric (1/√(nᵀ M n)), growing until it reaches
   // the tangential spacing, where the isotropic grading takes over.
   std::vector<Candidate> candidates;
@@ -119,10 +142,19 @@ LayerPoints layer_points(const FarFieldInput& input, const std::vector<std::arra
     const Vector3& direction = normal[position];
     const Matrix3& node_metric = *metric[position];
     const double tangential = tangential_spacing(node_metric, direction);
+    // Over a thin part of the body (trailing edge, the wake's ends, the tip) a sphere
+    // through a hull edge of length L cannot bulge far into the body: it rises about
+    // L²/(8τ) above the hull, τ the thickness. A point lower than that lies in every
+    // sphere through the edge, the edge is no longer Delaunay and TetGen must recover it
+    // with Steiner points that it then fails to remove under -Y. Such points are left out.
+    const double protected_height =
+        options.edge_protection * longest[position] * longest[position] / (8.0 * thickness[position]);
     double spacing = 1.0 / std::sqrt(direction.dot(node_metric * direction));
     double distance = 0.0;
-    for (int layer = 0; layer < options.maximum_layers && spacing < tangential; ++layer) {
+    for (int layer = 0; layer < options.maximum_layers && spacing < tangential;
+         ++layer, spacing *= options.layer_growth) {
       distance += spacing;
+      if (distance < protected_height) continue;
       Vector3 point = at(nodes[position]) + distance * direction;
       const bool plane = symmetric && on_footprint[position];
       if (plane) point.y() = options.symmetry_y;
@@ -131,7 +163,6 @@ LayerPoints layer_points(const FarFieldInput& input, const std::vector<std::arra
       if (hull_tree.squared_distance(query) < 0.25 * distance * distance) break;
       if (symmetric && !plane && point.y() < options.symmetry_y + 0.5 * spacing) break;
       candidates.push_back({point, spacing, distance, plane});
-      spacing *= options.layer_growth;
     }
   }
 
@@ -185,6 +216,37 @@ std::vector<Vector3> points_beyond(const std::vector<Vector3>& candidates, const
     tree.knnSearch(candidate.data(), 1, &nearest, &squared);
     const double limit = ratio * size(candidate);
     if (squared > limit * limit) kept.push_back(candidate);
+  }
+  return kept;
+}
+
+std::vector<Vector3> points_off_hull(const std::vector<Vector3>& candidates, const std::vector<Vector3>& points,
+                                     const std::vector<Triangle>& hull, double ratio) {
+  std::vector<Triangle3> triangles;
+  std::vector<Candidate> nodes;
+  std::vector<char> seen(points.size(), 0);
+  for (const Triangle& triangle : hull) {
+    Kernel::Point_3 corner[3];
+    for (int local = 0; local < 3; ++local) {
+      const std::size_t node = static_cast<std::size_t>(triangle[static_cast<std::size_t>(local)]);
+      corner[local] = Kernel::Point_3(points[node].x(), points[node].y(), points[node].z());
+      if (!seen[node]) nodes.push_back({points[node], 0.0, 0.0, false});
+      seen[node] = 1;
+    }
+    triangles.emplace_back(corner[0], corner[1], corner[2]);
+  }
+  const HullTree hull_tree(triangles.begin(), triangles.end());
+  const CandidateCloud cloud{&nodes};
+  CandidateTree tree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(16));
+  tree.buildIndex();
+  std::vector<Vector3> kept;
+  for (const Vector3& candidate : candidates) {
+    unsigned nearest = 0;
+    double node_squared = 0.0;
+    tree.knnSearch(candidate.data(), 1, &nearest, &node_squared);
+    const double surface_squared =
+        hull_tree.squared_distance(Kernel::Point_3(candidate.x(), candidate.y(), candidate.z()));
+    if (surface_squared >= ratio * ratio * node_squared) kept.push_back(candidate);
   }
   return kept;
 }

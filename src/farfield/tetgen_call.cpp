@@ -56,12 +56,20 @@ void fill(tetgenio& io, const TetgenInput& input, bool with_sizes) {
       io.holelist[3 * hole + static_cast<std::size_t>(axis)] = input.holes[hole](axis);
 }
 
-void run(const std::string& switches, tetgenio& in, tetgenio& out) {
+// `sliver_flips`: without -q TetGen's parser raises its flip bounds to 179° (only
+// nearly flat tetrahedra are flipped); these restore the -q bounds, so flips remove
+// slivers (largest dihedral above 165°) without refining anything.
+void run(const std::string& switches, tetgenio& in, tetgenio& out, bool sliver_flips = false) {
   tetgenbehavior behaviour;
   std::vector<char> text(switches.begin(), switches.end());
   text.push_back('\0');
   if (!behaviour.parse_commandline(text.data()))
     throw Error("farfield: TetGen rejected the switches " + switches);
+  if (sliver_flips) {
+    behaviour.optmaxdihedral = 165.0;
+    behaviour.optminsmtdihed = 179.0;
+    behaviour.optminslidihed = 179.0;
+  }
   tetrahedralize(&behaviour, &in, &out);
 }
 
@@ -100,7 +108,7 @@ TetgenOutput tetrahedralise(const TetgenInput& input) {
   if (input.quality) switches << "q" << input.radius_edge_ratio << (with_sizes ? "m" : "");
   switches << "JzQ";
   try {
-    run(switches.str(), in, out);
+    run(switches.str(), in, out, !input.quality);
   } catch (int code) {
     switch (code) {
       case 1:
@@ -157,13 +165,48 @@ bool receive(isolated_detail::Channel& channel, TetgenOutput& output) {
   return true;
 }
 
+namespace {
+
+double volume6(const std::vector<Vector3>& points, const std::array<Index, 4>& tetrahedron) {
+  auto at = [&](int corner) -> const Vector3& {
+    return points[static_cast<std::size_t>(tetrahedron[static_cast<std::size_t>(corner)])];
+  };
+  return (at(1) - at(0)).cross(at(2) - at(0)).dot(at(3) - at(0));
+}
+
+}  // namespace
+
+bool negative_orientation(const std::vector<Vector3>& points,
+                          const std::vector<std::array<Index, 4>>& tetrahedra) {
+  std::size_t negative = 0;
+  for (const auto& tetrahedron : tetrahedra) negative += volume6(points, tetrahedron) < 0.0;
+  return 2 * negative > tetrahedra.size();
+}
+
+std::size_t flat_tetrahedra(const std::vector<Vector3>& points,
+                            const std::vector<std::array<Index, 4>>& tetrahedra, Vector3* first) {
+  const double sign = negative_orientation(points, tetrahedra) ? -1.0 : 1.0;
+  std::size_t flat = 0;
+  for (const auto& tetrahedron : tetrahedra) {
+    if (sign * volume6(points, tetrahedron) > 0.0) continue;
+    if (flat++ == 0 && first) {
+      *first = Vector3::Zero();
+      for (Index node : tetrahedron) *first += points[static_cast<std::size_t>(node)] / 4.0;
+    }
+  }
+  return flat;
+}
+
 TetgenOutput run_tetgen(const TetgenInput& input) {
   // TetGen 1.5 frees memory twice when it stops on an error inside the library, so a
   // bad boundary would take the whole program down: TetGen runs in a child process
   // and only its result (or its error) comes back.
   try {
-    return run_isolated<TetgenOutput>("TetGen", [&] { return tetrahedralise(input); });
+    return run_isolated<TetgenOutput>(
+        "TetGen", [&] { return tetrahedralise(input); }, input.time_limit_seconds);
   } catch (const Error& error) {
+    if (input.time_limit_seconds > 0 && std::string(error.what()).find("did not finish") != std::string::npos)
+      throw;
     // Where TetGen's own test (-d) finds intersecting boundary triangles, that is
     // the cause to report, whatever the failure looked like.
     std::string intersections;

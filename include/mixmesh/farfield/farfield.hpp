@@ -22,6 +22,8 @@
 // points are placed along the smoothed outward normal at the normal spacing its metric
 // gives, growing by `layer_growth` until the spacing reaches the node's smallest
 // tangential spacing (the cell is isotropic), then the isotropic grading takes over.
+// A second TetGen run (no -q, sliver flips on) in the original coordinates takes the
+// layer points and the quality run's points away from them.
 #pragma once
 
 #include <array>
@@ -54,12 +56,24 @@ struct FarFieldOptions {
   double layer_growth = 1.25;  // ratio of successive normal spacings
   int maximum_layers = 40;
   double minimum_metric_distance = 0.6;  // inserted points closer than this (metric) are dropped
+  // Layer points lower than edge_protection × L²/(8τ) over the hull (L the longest hull
+  // edge at the node, τ the body's thickness below it) are dropped: they would make
+  // hull edges non-Delaunay over thin parts of the body (see docs/farfield.md).
+  double edge_protection = 0.25;
+  // Points of the exact pass closer to the hull surface than this fraction of their
+  // distance to the nearest hull node are dropped (they would make flat tetrahedra).
+  double hull_clearance = 0.2;
   // Preconditioning of the point set before TetGen (method.md §5; shear + whitening
-  // when on, the fastest variant measured in docs/farfield.md). Off by default: on the
-  // ONERA M6 the map back inverted slivers next to the thin side faces at the wake's
-  // end (95 cells), and TetGen ran faster without it (docs/farfield.md).
+  // when on). The quality pass runs in the mapped space; where the map's rounding
+  // leaves tetrahedra flat once mapped back (coplanar boundary parts), and always for
+  // anisotropic sizing, the final pass triangulates again in the original coordinates.
+  // Off by default: it costs time and changes little on the test wings (docs/farfield.md).
   bool precondition = false;
   PreconditionOptions preconditioning;
+  // The preconditioned quality pass is abandoned after this many seconds (TetGen's
+  // refinement can cycle in the mapped space) or when TetGen fails there, and run
+  // again without the map (a warning says so). 0: no limit.
+  unsigned precondition_time_limit = 600;
   // When set, the closed boundary is written there as legacy VTK after each transform:
   // boundary.vtk (as built), sheared.vtk (S⁻¹ P) and preconditioned.vtk (F P).
   std::filesystem::path dump_directory;
@@ -94,6 +108,7 @@ struct FarFieldResult {
   std::size_t boundary_points = 0;  // symmetry-plane and far-field points added to the boundary
   std::size_t layer_points = 0;     // anisotropic points offered to TetGen
   std::size_t steiner_points = 0;   // points TetGen added in the volume
+  std::size_t flat_tetrahedra = 0;  // with no positive volume (0 unless TetGen failed silently)
   double chord = 0.0;
   MetricLengthReport hull_lengths;  // only when metrics were given
 };
