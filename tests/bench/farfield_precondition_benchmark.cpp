@@ -5,8 +5,8 @@
 #include <benchmark/benchmark.h>
 
 #include <cmath>
-#include <map>
 
+#include "../support/farfield_hulls.hpp"
 #include "mixmesh/farfield/farfield.hpp"
 
 using namespace mixmesh;
@@ -16,44 +16,7 @@ namespace {
 // A swept slab: chord 1 (x), span 4 (y, from the symmetry plane), thickness 0.04 (z),
 // leading edge swept by 30°; 12 × 12 cells on each large face, open at y = 0.
 FarFieldInput swept_slab() {
-  FarFieldInput input;
-  const std::array<int, 3> cells = {12, 12, 1};
-  const Vector3 size(1.0, 4.0, 0.04);
-  std::map<std::array<int, 3>, Index> lattice;
-  auto node = [&](std::array<int, 3> at) {
-    const auto found = lattice.find(at);
-    if (found != lattice.end()) return found->second;
-    Vector3 point(size.x() * at[0] / cells[0], size.y() * at[1] / cells[1],
-                  size.z() * (at[2] - 0.5 * cells[2]) / cells[2]);
-    point.x() += std::tan(30.0 * M_PI / 180.0) * point.y();
-    input.points.push_back(point);
-    return lattice[at] = static_cast<Index>(input.points.size() - 1);
-  };
-  for (int axis = 0; axis < 3; ++axis)
-    for (int side = 0; side < 2; ++side) {
-      if (axis == 1 && side == 0) continue;
-      const int u = (axis + 1) % 3, v = (axis + 2) % 3;
-      for (int i = 0; i < cells[static_cast<std::size_t>(u)]; ++i)
-        for (int j = 0; j < cells[static_cast<std::size_t>(v)]; ++j) {
-          std::array<Index, 4> quad{};
-          const int corners[4][2] = {{i, j}, {i + 1, j}, {i + 1, j + 1}, {i, j + 1}};
-          for (int corner = 0; corner < 4; ++corner) {
-            std::array<int, 3> at{};
-            at[static_cast<std::size_t>(axis)] = side * cells[static_cast<std::size_t>(axis)];
-            at[static_cast<std::size_t>(u)] = corners[corner][0];
-            at[static_cast<std::size_t>(v)] = corners[corner][1];
-            quad[static_cast<std::size_t>(corner)] = node(at);
-          }
-          // Outward: the winding follows the right-hand rule of (u, v) about +axis.
-          if (side == 1)
-            input.hull.push_back({quad[0], quad[1], quad[2]}),
-                input.hull.push_back({quad[0], quad[2], quad[3]});
-          else
-            input.hull.push_back({quad[0], quad[2], quad[1]}),
-                input.hull.push_back({quad[0], quad[3], quad[2]});
-        }
-    }
-  return input;
+  return farfield_hulls::slab({0.0, 0.0, -0.02}, {1.0, 4.0, 0.04}, {12, 12, 1}, true, 30.0);
 }
 
 double minimum_dihedral_degrees(const MixedMesh& mesh) {

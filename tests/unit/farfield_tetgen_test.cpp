@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <map>
 
+#include "../support/farfield_hulls.hpp"
 #include "mixmesh/core/error.hpp"
 #include "mixmesh/farfield/farfield.hpp"
 #include "mixmesh/mesh/cell_geometry.hpp"
@@ -12,6 +13,8 @@
 using namespace mixmesh;
 
 namespace {
+
+using farfield_hulls::small_options;
 
 using Triangles = std::vector<std::array<Index, 3>>;
 
@@ -113,14 +116,6 @@ FarFieldInput hemisphere_hull(int rings, int sectors) {
     input.metric_nodes.push_back(static_cast<Index>(node));
   input.metrics = node_metrics(layer, input.metric_nodes);
   return input;
-}
-
-FarFieldOptions small_options() {
-  FarFieldOptions options;
-  options.radius_in_chords = 5.0;
-  options.farfield_size_in_chords = 1.5;
-  options.size_gradient = 0.4;
-  return options;
 }
 
 // The far field plus the hull as tagged faces: a closed, conforming, valid mesh whose
