@@ -10,7 +10,7 @@ add_test(NAME surface_onera_m6_generate
          COMMAND $<TARGET_FILE:mixmesh-cli> surface ${PROJECT_SOURCE_DIR}/cases/onera_m6.toml
                  -o ${surface_output}/onera_m6_surface.vtu)
 add_test(NAME surface_onera_m6_check
-         COMMAND ${MIXMESH_PYTHON} ${surface_check} mesh ${surface_output}/onera_m6_surface.vtu --wing-faces 16000)
+         COMMAND ${MIXMESH_PYTHON} ${surface_check} mesh ${surface_output}/onera_m6_surface.vtu --wing-faces 8000)
 set_tests_properties(surface_onera_m6_check PROPERTIES DEPENDS surface_onera_m6_generate)
 
 add_test(NAME surface_stations_generate

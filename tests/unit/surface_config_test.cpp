@@ -63,7 +63,7 @@ TEST(SurfaceConfig, OneraM6CaseReadsAsTheOneraM6) {
   config::Section surface_table = root.section("surface");
   const SurfaceOptions options = read_surface_options(surface_table);
   EXPECT_EQ(options.chordwise_cells, 200);
-  EXPECT_EQ(options.spanwise_cells, 80);
+  EXPECT_EQ(options.spanwise_cells, 40);
 }
 
 TEST(SurfaceConfig, StationsAreReadInOrderWithTheirOwnAirfoils) {
