@@ -2,15 +2,24 @@
 
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <cmath>
-
-#include "mixmesh/march/laplace_operators.hpp"
 
 namespace mixmesh::march_detail {
 
-namespace {
+std::vector<char> corrected_columns(const Front& front, const std::vector<char>& face_active,
+                                    const std::vector<Vector3>& current,
+                                    const std::vector<Vector3>& predicted) {
+  std::vector<char> corrected(current.size(), 1);
+  for (std::size_t face = 0; face < front.faces.size(); ++face)
+    if (!face_active[face])
+      for (int k = 0; k < front.faces[face].corner_count; ++k)
+        corrected[static_cast<std::size_t>(front.faces[face].columns[static_cast<std::size_t>(k)])] = 0;
+  for (std::size_t c = 0; c < current.size(); ++c)
+    if (!(predicted[c] - current[c]).norm()) corrected[c] = 0;
+  return corrected;
+}
 
-// Position of ring entry `entry` (negative: mirrored in the symmetry plane).
 Vector3 ring_position(int entry, const std::vector<Vector3>& positions, double symmetry_y) {
   if (entry >= 0) return positions[static_cast<std::size_t>(entry)];
   Vector3 mirrored = positions[static_cast<std::size_t>(-entry - 1)];
@@ -18,64 +27,84 @@ Vector3 ring_position(int entry, const std::vector<Vector3>& positions, double s
   return mirrored;
 }
 
-}  // namespace
+LaplaceWeights column_weights(const Front& front, std::size_t c, const std::vector<Vector3>& positions,
+                              const std::vector<Vector3>& current, const std::vector<Vector3>& predicted,
+                              double symmetry_y) {
+  if (front.neighbourhood[c] == Neighbourhood::structured) {
+    const auto& s = front.stencil[c];
+    auto at = [&](int k) { return positions[static_cast<std::size_t>(s[static_cast<std::size_t>(k)])]; };
+    const StructuredStencil stencil{at(0), at(1), at(2), at(3), at(4), at(5), at(6), at(7)};
+    return structured_laplace_weights(stencil, predicted[c], current[c]);
+  }
+  std::vector<Vector3> ring;
+  ring.reserve(front.ring[c].size());
+  for (int entry : front.ring[c]) ring.push_back(ring_position(entry, positions, symmetry_y));
+  return prism_laplace_weights(ring, positions[c], predicted[c], current[c]);
+}
 
-std::vector<Vector3> solve_layer(const Front& front, int sweeps, const std::vector<char>& face_active,
-                                 const std::vector<Vector3>& current, const std::vector<Vector3>& predicted,
-                                 double symmetry_y) {
+Vector3 free_column_update(const Front& front, std::size_t c, const std::vector<Vector3>& positions,
+                           const std::vector<Vector3>& current, const std::vector<Vector3>& predicted) {
+  // No Laplace stencil on an open fan: the direction of the step is averaged with the
+  // directions of the fan's lines (length kept).
+  const Vector3 own = predicted[c] - current[c];
+  const double length = own.norm();
+  Vector3 sum = own / length;
+  int count = 0;
+  Vector3 neighbours = Vector3::Zero();
+  for (int entry : front.ring[c]) {
+    const auto n = static_cast<std::size_t>(entry);
+    const Vector3 step = positions[n] - current[n];
+    if (step.norm() > 0.0) neighbours += step.normalized();
+    ++count;
+  }
+  if (count > 0) sum += neighbours / count;
+  return sum.norm() > 0.0 ? Vector3(current[c] + length * sum.normalized()) : positions[c];
+}
+
+double relative_change(const std::vector<char>& corrected, const std::vector<Vector3>& before,
+                       const std::vector<Vector3>& after, const std::vector<Vector3>& current,
+                       const std::vector<Vector3>& predicted) {
+  double change = 0.0;
+  for (std::size_t c = 0; c < before.size(); ++c)
+    if (corrected[c])
+      change = std::max(change, (after[c] - before[c]).norm() / (predicted[c] - current[c]).norm());
+  return change;
+}
+
+LayerSolution solve_layer_by_sweeps(const Front& front, int sweeps, const std::vector<char>& face_active,
+                                    const std::vector<Vector3>& current,
+                                    const std::vector<Vector3>& predicted, double symmetry_y) {
   const std::size_t column_count = current.size();
-  std::vector<char> complete(column_count, 1);
-  for (std::size_t face = 0; face < front.faces.size(); ++face)
-    if (!face_active[face])
-      for (int k = 0; k < front.faces[face].corner_count; ++k)
-        complete[static_cast<std::size_t>(front.faces[face].columns[static_cast<std::size_t>(k)])] = 0;
-
-  std::vector<Vector3> positions = predicted, updated = predicted;
+  const std::vector<char> corrected = corrected_columns(front, face_active, current, predicted);
+  LayerSolution solution;
+  solution.positions = predicted;
+  std::vector<Vector3>& positions = solution.positions;
+  std::vector<Vector3> updated = predicted;
   for (int sweep = 0; sweep < sweeps; ++sweep) {
     tbb::parallel_for(std::size_t{0}, column_count, [&](std::size_t c) {
-      if (!complete[c] || !(predicted[c] - current[c]).norm()) return;
-      switch (front.neighbourhood[c]) {
-        case Neighbourhood::structured: {
-          const auto& s = front.stencil[c];
-          auto at = [&](int k) {
-            return positions[static_cast<std::size_t>(s[static_cast<std::size_t>(k)])];
-          };
-          const StructuredStencil stencil{at(0), at(1), at(2), at(3), at(4), at(5), at(6), at(7)};
-          updated[c] = structured_laplace_update(stencil, predicted[c], current[c]);
-          break;
+      if (!corrected[c]) return;
+      if (front.neighbourhood[c] == Neighbourhood::free) {
+        updated[c] = free_column_update(front, c, positions, current, predicted);
+      } else {
+        const LaplaceWeights weights = column_weights(front, c, positions, current, predicted, symmetry_y);
+        Vector3 sum = weights.target_weight * predicted[c];
+        if (front.neighbourhood[c] == Neighbourhood::structured) {
+          for (std::size_t k = 0; k < 8; ++k)
+            sum += weights.neighbour[k] * positions[static_cast<std::size_t>(front.stencil[c][k])];
+        } else {
+          for (std::size_t k = 0; k < front.ring[c].size(); ++k)
+            sum += weights.neighbour[k] * ring_position(front.ring[c][k], positions, symmetry_y);
         }
-        case Neighbourhood::ring: {
-          std::vector<Vector3> ring;
-          ring.reserve(front.ring[c].size());
-          for (int entry : front.ring[c]) ring.push_back(ring_position(entry, positions, symmetry_y));
-          updated[c] = prism_laplace_update(ring, positions[c], predicted[c], current[c]);
-          break;
-        }
-        case Neighbourhood::free: {
-          // No Laplace stencil on an open fan: the direction of the step is averaged
-          // with the directions of the fan's lines (length kept).
-          const Vector3 own = predicted[c] - current[c];
-          const double length = own.norm();
-          Vector3 sum = own / length;
-          int count = 0;
-          Vector3 neighbours = Vector3::Zero();
-          for (int entry : front.ring[c]) {
-            const auto n = static_cast<std::size_t>(entry);
-            const Vector3 step = positions[n] - current[n];
-            if (step.norm() > 0.0) neighbours += step.normalized();
-            ++count;
-          }
-          if (count > 0) sum += neighbours / count;
-          if (sum.norm() > 0.0) updated[c] = current[c] + length * sum.normalized();
-          break;
-        }
+        updated[c] = sum / weights.denominator;
       }
       if (front.on_symmetry[c]) updated[c].y() = symmetry_y;
     });
+    solution.last_change = relative_change(corrected, positions, updated, current, predicted);
+    solution.iterations = sweep + 1;
     positions.swap(updated);
     updated = positions;
   }
-  return positions;
+  return solution;
 }
 
 std::vector<Vector3> neighbour_mean_directions(const Front& front, const std::vector<char>& column_active,

@@ -80,8 +80,19 @@ void check_options(const MarchOptions& options) {
     throw Error("march: orthogonal and release layer counts must be >= 0");
   if (!(options.direction_memory >= 0.0 && options.direction_memory < 1.0))
     throw Error("march: direction memory must lie in [0, 1)");
+  if (!(options.layer_tolerance >= 0.0))
+    throw Error("march: layer tolerance must be >= 0, got " + std::to_string(options.layer_tolerance));
+  if (options.layer_solve != LayerSolve::sweeps && options.layer_solve != LayerSolve::sparse)
+    throw Error("march: unknown layer solve " + std::to_string(static_cast<int>(options.layer_solve)));
   if (options.step_reductions < 0) throw Error("march: step reductions must be >= 0");
   if (options.direction_smoothing_passes < 0) throw Error("march: direction smoothing passes must be >= 0");
+}
+
+std::string scientific(double value) {
+  std::ostringstream stream;
+  stream.precision(2);
+  stream << std::scientific << value;
+  return stream.str();
 }
 
 std::string describe(const Vector3& x) {
@@ -223,8 +234,19 @@ BoundaryLayer march_layers(const SurfaceMesh& surface, const MarchOptions& optio
     // Corrector: face-weighted Laplace, then the control functions (step length held,
     // orthogonal direction near the wall, smoothed direction released outwards).
     if (smoothed) {
-      const std::vector<Vector3> corrected =
-          march_detail::solve_layer(front, options.sweeps, face_active, current, next, surface.symmetry_y);
+      const march_detail::LayerSolution solution =
+          options.layer_solve == LayerSolve::sparse
+              ? march_detail::solve_layer_sparse(front, options.sweeps, options.layer_tolerance, face_active,
+                                                 current, next, surface.symmetry_y)
+              : march_detail::solve_layer_by_sweeps(front, options.sweeps, face_active, current, next,
+                                                    surface.symmetry_y);
+      const std::vector<Vector3>& corrected = solution.positions;
+      report.corrector_iterations += solution.iterations;
+      report.corrector_change = std::max(report.corrector_change, solution.last_change);
+      if (log)
+        log->detail("march: layer " + std::to_string(layer + 1) + ": corrector " +
+                    std::to_string(solution.iterations) + " iterations, last change " +
+                    scientific(solution.last_change) + " of the step");
       for (std::size_t c = 0; c < column_count; ++c) {
         // The corrector moves the node sideways; its pull along the line (inwards at
         // convex, outwards at concave corners) is the spacing the control holds.

@@ -21,6 +21,7 @@ using config::Bounds;
 //   growth_rate = 1.25
 //   total_thickness = 0.0
 //   method = "smoothed"        # or "normal": the plain extrusion baseline
+//   layer_solve = "sweeps"     # or "sparse" (then layer_tolerance = 1e-4)
 //   sweeps = 12, orthogonal_layers = 3, release_layers = 10, direction_memory = 0.5
 //   step_reductions = 3, self_intersection_check = true
 MarchOptions read_march_options(config::Section& table) {
@@ -44,6 +45,10 @@ MarchOptions read_march_options(config::Section& table) {
   table.read_choice("method", method, {"smoothed", "normal"});
   options.method = method == "normal" ? MarchMethod::normal : MarchMethod::smoothed;
   table.read("sweeps", options.sweeps, Bounds::at_least(0));
+  std::string layer_solve = "sweeps";
+  table.read_choice("layer_solve", layer_solve, {"sweeps", "sparse"});
+  options.layer_solve = layer_solve == "sparse" ? LayerSolve::sparse : LayerSolve::sweeps;
+  table.read("layer_tolerance", options.layer_tolerance, Bounds::non_negative());
   table.read("orthogonal_layers", options.orthogonal_layers, Bounds::at_least(0));
   table.read("release_layers", options.release_layers, Bounds::at_least(0));
   table.read("direction_memory", options.direction_memory, Bounds::between(0, 1));

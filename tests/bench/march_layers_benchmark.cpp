@@ -1,6 +1,7 @@
 // 32 layers on the paper-scale ONERA M6 surface of cases/onera_m6.toml (200 x 40 wing
-// faces, the wake and the tip cap), marched by the smoothed method and by the
-// plain-normal baseline. Times are wall-clock (the march runs on all cores).
+// faces, the wake and the tip cap), marched by the smoothed method (layer corrector by
+// Jacobi sweeps or by a sparse solve per layer) and by the plain-normal baseline.
+// Times are wall-clock (the march runs on all cores).
 #include <benchmark/benchmark.h>
 
 #include <filesystem>
@@ -29,25 +30,37 @@ const mixmesh::SurfaceMesh& onera_m6_surface() {
   return surface;
 }
 
-void march(benchmark::State& state, mixmesh::MarchMethod method, bool intersection_check = true) {
+void march(benchmark::State& state, mixmesh::MarchMethod method, bool intersection_check = true,
+           mixmesh::LayerSolve layer_solve = mixmesh::LayerSolve::sweeps, int sweeps = 12) {
   const mixmesh::SurfaceMesh& surface = onera_m6_surface();
   mixmesh::MarchOptions options;  // 32 layers, y+ = 1 at Re 11.72e6 on the MAC
   options.method = method;
   options.check_self_intersection = intersection_check;
+  options.layer_solve = layer_solve;
+  options.sweeps = sweeps;
   std::size_t cells = 0;
-  int stopped = 0;
+  mixmesh::MarchReport report;
   for (auto _ : state) {
     const mixmesh::BoundaryLayer layer = mixmesh::march_layers(surface, options);
     cells = layer.mesh.cell_count();
-    stopped = layer.report.stopped_faces;
+    report = layer.report;
     benchmark::DoNotOptimize(cells);
   }
   state.counters["cells"] = static_cast<double>(cells);
-  state.counters["stopped_faces"] = stopped;
+  state.counters["stopped_faces"] = report.stopped_faces;
+  state.counters["corrector_iterations"] = report.corrector_iterations;
+  state.counters["corrector_change"] = report.corrector_change;
 }
 
 void smoothed_march(benchmark::State& state) {
   march(state, mixmesh::MarchMethod::smoothed);
+}
+void smoothed_march_sparse_layer_solve(benchmark::State& state) {
+  march(state, mixmesh::MarchMethod::smoothed, true, mixmesh::LayerSolve::sparse);
+}
+// The sweeps run until they reach about the sparse solve's convergence (docs/march.md).
+void smoothed_march_100_sweeps(benchmark::State& state) {
+  march(state, mixmesh::MarchMethod::smoothed, true, mixmesh::LayerSolve::sweeps, 100);
 }
 void normal_extrusion(benchmark::State& state) {
   march(state, mixmesh::MarchMethod::normal);
@@ -63,6 +76,18 @@ BENCHMARK(smoothed_march)
     ->Iterations(1)
     ->UseRealTime()
     ->Repetitions(5)
+    ->ReportAggregatesOnly(true);
+BENCHMARK(smoothed_march_sparse_layer_solve)
+    ->Unit(benchmark::kSecond)
+    ->Iterations(1)
+    ->UseRealTime()
+    ->Repetitions(3)
+    ->ReportAggregatesOnly(true);
+BENCHMARK(smoothed_march_100_sweeps)
+    ->Unit(benchmark::kSecond)
+    ->Iterations(1)
+    ->UseRealTime()
+    ->Repetitions(3)
     ->ReportAggregatesOnly(true);
 BENCHMARK(smoothed_march_without_intersection_check)
     ->Unit(benchmark::kSecond)

@@ -29,6 +29,22 @@ struct StructuredStencil {
 Vector3 structured_laplace_update(const StructuredStencil& layer, const Vector3& target,
                                   const Vector3& below);
 
+// The discrete equation of either operator with its weights frozen at the given
+// positions, a linear equation for the centre:
+//   denominator * centre = sum_k neighbour[k] * point_k + target_weight * target.
+// The structured neighbours are in StructuredStencil order (east, west, north, south,
+// north-east, north-west, south-east, south-west); the ring neighbours in ring order.
+// A degenerate stencil gives centre = target (no neighbour weight, denominator 1).
+struct LaplaceWeights {
+  std::vector<double> neighbour;
+  double target_weight = 1.0;
+  double denominator = 1.0;
+};
+LaplaceWeights structured_laplace_weights(const StructuredStencil& layer, const Vector3& target,
+                                          const Vector3& below);
+LaplaceWeights prism_laplace_weights(const std::vector<Vector3>& ring, const Vector3& centre,
+                                     const Vector3& target, const Vector3& below);
+
 // Wild eq. (3)-(7) for a prism column: `ring` holds the N >= 3 neighbours of the
 // centre in the new layer, counter-clockwise about the marching direction; `centre`
 // the current estimate of the centre, `below` the centre on the previous layer.

@@ -27,11 +27,22 @@ enum class MarchMethod {
   normal     // baseline: plain extrusion along area-averaged normals, no smoothing
 };
 
+// How the corrector solves the equations of a new layer.
+enum class LayerSolve {
+  sweeps,  // Jacobi sweeps, the weights updated every sweep
+  sparse   // per outer iteration: weights frozen, one sparse solve of the whole layer
+};
+
 struct MarchOptions {
   SpacingOptions spacing;
   MarchMethod method = MarchMethod::smoothed;
-  // Jacobi sweeps of the implicit corrector per layer (each sweep is parallel).
+  // Jacobi sweeps of the implicit corrector per layer (each sweep is parallel); with
+  // LayerSolve::sparse the most outer iterations per layer.
   int sweeps = 12;
+  LayerSolve layer_solve = LayerSolve::sweeps;
+  // LayerSolve::sparse stops when no node moved by more than this fraction of its
+  // marching step in the last outer iteration.
+  double layer_tolerance = 1e-4;
   // Control functions: the first `orthogonal_layers` layers march exactly along the
   // wall-orthogonal direction; over the next `release_layers` layers the smoothed
   // direction takes over (smoothstep blend).
@@ -69,6 +80,10 @@ struct MarchReport {
   int stopped_faces = 0;               // surface faces whose column stopped early
   int stopped_nodes = 0;               // surface nodes on such faces
   std::vector<StoppedRegion> stopped;  // grouped by layer
+  // Corrector: sweeps or outer iterations over all layers, and the largest last change
+  // of a layer (node change of its last iteration / node step).
+  int corrector_iterations = 0;
+  double corrector_change = 0.0;
   double seconds = 0.0;
 };
 
