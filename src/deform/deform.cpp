@@ -14,12 +14,6 @@ namespace mixmesh::deform {
 
 namespace {
 
-std::string format_point(const Vector3& point) {
-  std::ostringstream text;
-  text << '(' << point.x() << ", " << point.y() << ", " << point.z() << ')';
-  return text.str();
-}
-
 }  // namespace
 
 DeformResult deform_step(const MixedMesh& mesh, const MixedMesh& reference, const Motion& motion, int step,
@@ -38,7 +32,7 @@ DeformResult deform_step(const MixedMesh& mesh, const MixedMesh& reference, cons
       points[node] = mesh.points[node] + boundary.displacement[node];
     if (!points[node].allFinite())
       throw Error(method.name() + ": non-finite position for node " + std::to_string(node) + " at " +
-                  format_point(mesh.points[node]));
+                  point_text(mesh.points[node]));
   }
   detail::project_sliding(boundary, mesh.points, points);
 
@@ -80,7 +74,7 @@ DeformResult deform_step(const MixedMesh& mesh, const MixedMesh& reference, cons
   summary << "step " << step << '/' << motion.steps << " (" << method.name() << "): " << result.seconds
           << " s, min scaled Jacobian " << result.before.min_scaled_jacobian << " -> "
           << result.after.min_scaled_jacobian << ", wall-line angle change up to "
-          << result.max_wall_angle_change << " deg at " << format_point(result.max_wall_angle_change_location)
+          << result.max_wall_angle_change << " deg at " << point_text(result.max_wall_angle_change_location)
           << " (fixed walls " << result.fixed_wall_angle_change << " deg), invalid cells "
           << result.invalid_count;
   log.info(summary.str());
@@ -100,7 +94,7 @@ void deform_sequence(const MixedMesh& mesh, const Motion& motion, DeformationMet
       std::ostringstream message;
       message << "step " << step << ": " << result.invalid_count << " cells stay inverted after repair";
       for (const InvalidCell& cell : result.invalid_examples)
-        message << "; " << cell.entity << ' ' << cell.index << " at " << format_point(cell.location);
+        message << "; " << cell.entity << ' ' << cell.index << " at " << point_text(cell.location);
       if (result.invalid_count == 0) message << " (" << validate(result.mesh).summary() << ')';
       message << "; nothing written (--keep-invalid writes it anyway)";
       throw Error(message.str());

@@ -30,12 +30,6 @@ std::string seconds_text(double seconds) {
   return text.str();
 }
 
-std::string point_text(const Vector3& point) {
-  std::ostringstream text;
-  text << "(" << point.x() << ", " << point.y() << ", " << point.z() << ")";
-  return text.str();
-}
-
 void validate(const FarFieldInput& input, const FarFieldOptions& options) {
   if (input.hull.empty()) throw Error("farfield: the hull has no triangles");
   for (std::size_t face = 0; face < input.hull.size(); ++face)

@@ -14,12 +14,6 @@ namespace mixmesh::farfield_parts {
 
 namespace {
 
-std::string point_text(const Vector3& point) {
-  std::ostringstream text;
-  text << "(" << point.x() << ", " << point.y() << ", " << point.z() << ")";
-  return text.str();
-}
-
 // Fills a tetgenio with the points, sizes and boundary triangles (tetgenio frees
 // what it holds with delete[]).
 void fill(tetgenio& io, const TetgenInput& input, bool with_sizes) {

@@ -4,7 +4,6 @@
 #include <limits>
 #include <map>
 #include <set>
-#include <sstream>
 
 #include "mixmesh/core/error.hpp"
 #include "mixmesh/mesh/cell_geometry.hpp"
@@ -15,12 +14,6 @@ namespace mixmesh {
 namespace {
 
 using FaceKey = std::array<Index, 4>;
-
-std::string point_text(const Vector3& point) {
-  std::ostringstream text;
-  text << "(" << point.x() << ", " << point.y() << ", " << point.z() << ")";
-  return text.str();
-}
 
 // Checks the outer-layer listing against the mesh before anything is built, so a bad
 // listing fails with the offending cell named rather than with a broken mesh.

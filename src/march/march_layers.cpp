@@ -95,12 +95,6 @@ std::string scientific(double value) {
   return stream.str();
 }
 
-std::string describe(const Vector3& x) {
-  std::ostringstream stream;
-  stream << "(" << x.x() << ", " << x.y() << ", " << x.z() << ")";
-  return stream.str();
-}
-
 // Outward conormals (in the surface, across the edge) of the free edges at a sheet's
 // downstream end (a wake's end): free sheet edges that face away from the line where the
 // sheet leaves the wall (within 30 degrees of the direction from its nearest node), at
@@ -392,7 +386,7 @@ BoundaryLayer march_layers(const SurfaceMesh& surface, const MarchOptions& optio
               " cells");
     for (const StoppedRegion& region : report.stopped)
       log->warning("march: " + std::to_string(region.faces) + " faces stopped at layer " +
-                   std::to_string(region.layer) + " near " + describe(region.location));
+                   std::to_string(region.layer) + " near " + point_text(region.location));
   }
   return result;
 }

@@ -1,6 +1,7 @@
 #include "mixmesh/mesh/mixed_mesh.hpp"
 
 #include <algorithm>
+#include <sstream>
 
 namespace mixmesh {
 
@@ -60,6 +61,12 @@ std::vector<Index> compact_points(MixedMesh& mesh) {
   for (FaceBlock& faces : mesh.planar_cells) apply(faces.nodes);
   apply(mesh.boundary_edges.nodes);
   return renumber;
+}
+
+std::string point_text(const Vector3& point) {
+  std::ostringstream text;
+  text << "(" << point.x() << ", " << point.y() << ", " << point.z() << ")";
+  return text.str();
 }
 
 }  // namespace mixmesh

@@ -89,4 +89,7 @@ struct MixedMesh {
 // order. Returns old→new indices (-1 for removed points).
 std::vector<Index> compact_points(MixedMesh& mesh);
 
+// "(x, y, z)": how error messages and logs name a location.
+std::string point_text(const Vector3& point);
+
 }  // namespace mixmesh
