@@ -53,6 +53,7 @@ void add_generate_command(CLI::App& application) {
       }
     }
     for (const auto& path : write_outputs(result, options.output)) log.info("wrote " + path.string());
+    for (const auto& path : run_deform_steps(result, options, log)) log.info("wrote " + path.string());
     if (!arguments->report.empty()) write_report(arguments->report, result.report);
     std::cout << table_row(result.report) << '\n';
   });

@@ -5,16 +5,13 @@
 #include <cmath>
 #include <sstream>
 
+#include "deform/deform_quality.hpp"
 #include "deform/dual_mesh.hpp"
 #include "deform/rotation.hpp"
 #include "mixmesh/core/error.hpp"
 #include "mixmesh/quality/validity.hpp"
 
 namespace mixmesh::deform {
-
-namespace {
-
-}  // namespace
 
 DeformResult deform_step(const MixedMesh& mesh, const MixedMesh& reference, const Motion& motion, int step,
                          DeformationMethod& method, const Log& log, const DeformOptions& options) {
@@ -41,22 +38,24 @@ DeformResult deform_step(const MixedMesh& mesh, const MixedMesh& reference, cons
   result.mesh.points = std::move(points);
   result.seconds = clock.seconds();
 
-  const detail::DualMesh dual = detail::build_dual_mesh(result.mesh);
-  for (std::size_t cell = 0; cell < dual.cell_count(); ++cell) {
+  // One dual mesh and one set of wall lines (chosen on the undeformed mesh) serve the
+  // figures before and after: the cells are the same, only the points moved.
+  const detail::DualMesh dual = detail::build_dual_mesh(mesh);
+  const WallLines lines = detail::wall_lines(mesh, dual, boundary.marker_roles);
+  result.before = detail::summarise_quality(mesh, dual, lines);
+  result.after = detail::summarise_quality(result.mesh, dual, lines);
+  result.invalid_count = result.after.invalid_cells;
+  for (std::size_t cell = 0; cell < dual.cell_count() && result.invalid_examples.size() < 5 &&
+                             result.invalid_examples.size() < result.invalid_count;
+       ++cell) {
     if (detail::cell_valid(dual, cell, result.mesh.points)) continue;
-    ++result.invalid_count;
-    if (result.invalid_examples.size() < 5)
-      result.invalid_examples.push_back({detail::cell_kind_name(dual.cell_kind[cell]),
-                                         dual.index_in_block[cell],
-                                         detail::cell_centre(dual, cell, result.mesh.points)});
+    result.invalid_examples.push_back({detail::cell_kind_name(dual.cell_kind[cell]), dual.index_in_block[cell],
+                                       detail::cell_centre(dual, cell, result.mesh.points)});
   }
   const ValidityReport validity = validate(result.mesh);
   result.valid = result.invalid_count == 0 && validity.valid();
   if (result.invalid_count == 0 && !validity.valid()) log.warning("deformed mesh: " + validity.summary());
 
-  result.before = summarise_quality(mesh, boundary.marker_roles);
-  result.after = summarise_quality(result.mesh, boundary.marker_roles);
-  const WallLines lines = wall_lines(mesh, boundary.marker_roles);
   const std::vector<double> before = wall_angles(mesh, lines);
   const std::vector<double> after = wall_angles(result.mesh, lines);
   for (std::size_t entry = 0; entry < before.size(); ++entry) {

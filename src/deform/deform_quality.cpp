@@ -7,8 +7,7 @@
 #include <cmath>
 #include <limits>
 
-#include "deform/dual_mesh.hpp"
-#include "mixmesh/deform/deform.hpp"
+#include "deform/deform_quality.hpp"
 #include "mixmesh/mesh/cell_geometry.hpp"
 #include "mixmesh/quality/cell_quality.hpp"
 
@@ -36,7 +35,16 @@ Vector3 face_normal(const std::vector<Vector3>& points, const Index* nodes, int 
 }  // namespace
 
 WallLines wall_lines(const MixedMesh& mesh, const std::vector<MarkerRole>& marker_roles) {
+  return detail::wall_lines(mesh, detail::build_dual_mesh(mesh), marker_roles);
+}
+
+QualitySummary summarise_quality(const MixedMesh& mesh, const std::vector<MarkerRole>& marker_roles) {
   const detail::DualMesh dual = detail::build_dual_mesh(mesh);
+  return detail::summarise_quality(mesh, dual, detail::wall_lines(mesh, dual, marker_roles));
+}
+
+WallLines detail::wall_lines(const MixedMesh& mesh, const DualMesh& dual,
+                             const std::vector<MarkerRole>& marker_roles) {
   WallLines lines;
   lines.face_offsets.push_back(0);
   std::vector<char> on_wall(mesh.points.size(), 0);
@@ -122,9 +130,8 @@ std::vector<double> wall_angles(const MixedMesh& mesh, const WallLines& lines) {
   return angles;
 }
 
-QualitySummary summarise_quality(const MixedMesh& mesh, const std::vector<MarkerRole>& marker_roles) {
+QualitySummary detail::summarise_quality(const MixedMesh& mesh, const DualMesh& dual, const WallLines& lines) {
   QualitySummary summary;
-  const detail::DualMesh dual = detail::build_dual_mesh(mesh);
   struct Partial {
     double min_jacobian = std::numeric_limits<double>::infinity();
     std::size_t invalid = 0;
@@ -160,7 +167,6 @@ QualitySummary summarise_quality(const MixedMesh& mesh, const std::vector<Marker
   summary.min_scaled_jacobian = total.min_jacobian;
   summary.invalid_cells = total.invalid;
   summary.sliver_histogram = total.slivers;
-  const WallLines lines = wall_lines(mesh, marker_roles);
   const std::vector<double> angles = wall_angles(mesh, lines);
   double sum = 0.0;
   std::size_t count = 0;

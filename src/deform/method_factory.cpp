@@ -122,4 +122,22 @@ DeformSetup read_deform_setup(const std::filesystem::path& motion_file) {
   return setup;
 }
 
+DeformStep read_deform_step(config::Section& section) {
+  DeformStep step;
+  section.read("name", step.name);
+  if (step.name.empty() || step.name.find_first_of("/\\") != std::string::npos)
+    section.fail("name", "a [[deform]] step needs a name for its output files (no slashes)");
+  step.motion = read_motion(section);
+  std::optional<config::Section> options = section.optional_section(step.motion.method);
+  if (step.motion.method == "ara") {
+    const AraOptions settings = options ? read_ara_options(*options) : AraOptions{};
+    step.make_method = [settings] { return std::make_unique<AraMethod>(settings); };
+  } else {
+    const IdwOptions settings = options ? read_idw_options(*options) : IdwOptions{};
+    step.make_method = [settings] { return std::make_unique<IdwMethod>(settings); };
+  }
+  section.finish();
+  return step;
+}
+
 }  // namespace mixmesh::deform

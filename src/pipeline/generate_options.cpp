@@ -147,6 +147,12 @@ GenerateOptions read_generate_options(config::Document& document) {
   options.farfield = read_farfield_options(farfield ? *farfield : no_table);
   auto output = root.optional_section("output");
   options.output = read_output_options(output ? *output : no_table, document.file());
+  for (config::Section& step : root.sections("deform")) {
+    options.deform.push_back(deform::read_deform_step(step));
+    for (std::size_t other = 0; other + 1 < options.deform.size(); ++other)
+      if (options.deform[other].name == options.deform.back().name)
+        step.fail("name", "two [[deform]] steps named '" + options.deform.back().name + "'");
+  }
   root.finish();
   return options;
 }

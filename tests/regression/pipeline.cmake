@@ -30,3 +30,17 @@ add_test(NAME pipeline_batch_sweep_two_jobs
                  -o ${pipeline_folder}/batch)
 set_tests_properties(pipeline_batch_sweep_two_jobs PROPERTIES LABELS regression
                      PASS_REGULAR_EXPRESSION "batch: 2 ok, 0 failed")
+
+# Mesh-then-deform: a generated wing pitched by its [[deform]] steps (ARA, one step and
+# a three-step ramp); the last deformed mesh checked by the independent checker.
+add_test(NAME pipeline_generate_then_deform
+         COMMAND mixmesh-cli generate ${PROJECT_SOURCE_DIR}/cases/pipeline/wing_pitch.toml
+                 --output-dir ${pipeline_folder}/deform)
+set_tests_properties(pipeline_generate_then_deform PROPERTIES LABELS regression FIXTURES_SETUP deformed_mesh
+                     PASS_REGULAR_EXPRESSION "wrote [^\n]*wing_pitch_ramp_0003.vtu"
+                     FAIL_REGULAR_EXPRESSION "mixmesh: error|INVALID")
+add_test(NAME pipeline_check_mesh_deformed
+         COMMAND ${MIXMESH_PYTHON} ${MIXMESH_CHECK_MESH} ${pipeline_folder}/deform/wing_pitch_ramp_0003.vtu
+                 --no-foam -q)
+set_tests_properties(pipeline_check_mesh_deformed PROPERTIES LABELS regression
+                     FIXTURES_REQUIRED deformed_mesh PASS_REGULAR_EXPRESSION "\nVALID")

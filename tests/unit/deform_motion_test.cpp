@@ -99,6 +99,39 @@ TEST(DeformMotion, RejectsBadMotionFilesWithTheirPosition) {
   std::filesystem::remove(bad);
 }
 
+DeformStep parse_step(const std::string& text) {
+  config::Document document = config::Document::parse(text, "generate.toml");
+  return read_deform_step(document.root().sections("deform").front());
+}
+
+TEST(DeformStep, ReadsAGenerationConfigStepAndMakesFreshMethods) {
+  const DeformStep step = parse_step(
+      "[[deform]]\nname = \"pitch\"\nmethod = \"idw\"\nsteps = 2\n"
+      "[[deform.body]]\nmarkers = [\"wall\"]\nangle = 4\n"
+      "[deform.idw]\nform = \"simple\"\n");
+  EXPECT_EQ(step.name, "pitch");
+  EXPECT_EQ(step.motion.steps, 2);
+  ASSERT_EQ(step.motion.bodies.size(), 1u);
+  EXPECT_EQ(step.motion.bodies[0].angle, 4.0);
+  const auto first = step.make_method();
+  const auto second = step.make_method();
+  EXPECT_EQ(first->name(), "idw");
+  EXPECT_NE(first.get(), second.get());
+}
+
+TEST(DeformStep, RejectsStepsWithoutANameOrWithUnknownKeys) {
+  const std::string body = "[[deform.body]]\nmarkers = [\"wall\"]\n";
+  EXPECT_THROW(parse_step("[[deform]]\n" + body), Error);                          // no name
+  EXPECT_THROW(parse_step("[[deform]]\nname = \"a/b\"\n" + body), Error);         // a slash
+  EXPECT_THROW(parse_step("[[deform]]\nname = \"a\"\nstep = 3\n" + body), Error);  // misspelt key
+  try {
+    parse_step("[[deform]]\nname = \"a\"\n" + body + "[deform.ara]\ntolerence = 1e-5\n");
+    FAIL() << "no error";
+  } catch (const Error& error) {
+    EXPECT_NE(std::string(error.what()).find("generate.toml:6"), std::string::npos) << error.what();
+  }
+}
+
 TEST(DeformBoundary, RolesOfMovingFixedAndSlidingNodes) {
   OGrid grid;
   grid.around = 16;

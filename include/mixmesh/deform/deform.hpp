@@ -153,6 +153,17 @@ struct DeformSetup {
 };
 DeformSetup read_deform_setup(const std::filesystem::path& motion_file);
 
+// A [[deform]] step of a generation config: a motion (keys as in a motion file, bodies
+// as [[deform.body]], method options as [deform.ara]/[deform.idw]) and a `name` for its
+// output files. It keeps the method's settings, not a method, so that runs in parallel
+// (a batch) each make their own. Unknown keys are errors with their file:line:column.
+struct DeformStep {
+  std::string name;
+  Motion motion;
+  std::function<std::unique_ptr<DeformationMethod>()> make_method;
+};
+DeformStep read_deform_step(config::Section& section);
+
 // Every step of a motion: step k deforms the initial mesh (or, when
 // motion.incremental, the mesh of step k − 1) and hands its result to `each_step`,
 // which may keep or write it. Stops with mixmesh::Error at the first step whose mesh

@@ -13,6 +13,7 @@
 
 #include "mixmesh/config/config.hpp"
 #include "mixmesh/core/log.hpp"
+#include "mixmesh/deform/deform.hpp"
 #include "mixmesh/farfield/farfield.hpp"
 #include "mixmesh/geometry/planform.hpp"
 #include "mixmesh/interface/interface_split.hpp"
@@ -38,10 +39,12 @@ struct GenerateOptions {
   InterfaceOptions interface;
   FarFieldOptions farfield;
   OutputOptions output;
+  // [[deform]] steps: each deforms the generated mesh (mesh-then-deform pipelines).
+  std::vector<deform::DeformStep> deform;
 };
 
 // Reads every table of a generate config ([wing], [surface], [march], [interface],
-// [farfield], [output]); unknown keys and tables are errors with their position.
+// [farfield], [output], [[deform]]); unknown keys and tables are errors with their position.
 GenerateOptions read_generate_options(config::Document& document);
 
 // Loads a config file, applies the command line's KEY=VALUE overrides (--set) and
@@ -88,6 +91,14 @@ GenerateResult generate_from_surface(const SurfaceMesh& surface, const GenerateO
 // The files of options.formats in options.folder, each written atomically. Returns
 // the paths written. Throws, writing nothing, when the mesh is invalid.
 std::vector<std::filesystem::path> write_outputs(const GenerateResult& result, const OutputOptions& options);
+
+// Runs every [[deform]] step of options on the generated (valid) mesh and writes its
+// meshes in the output formats as NAME_STEPNAME.ext (NAME_STEPNAME_0003.ext in a
+// sequence). Each step's meshes are all checked before the first is written; a step
+// whose mesh stays invalid throws (deform::deform_sequence) and writes nothing.
+// Returns the paths written.
+std::vector<std::filesystem::path> run_deform_steps(const GenerateResult& result, const GenerateOptions& options,
+                                                    const Log& log);
 
 // The first offenders of each failed validity check, one per line, for error messages.
 std::string validity_details(const ValidityReport& validity);
