@@ -11,6 +11,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <string>
 
@@ -46,21 +47,31 @@ struct NearestDistance {
   double accuracy = 0.0;
   bool known = false;
   Vector3 previous_point = Vector3::Zero();
-  Vector3 previous_nearest = Vector3::Zero();
+  Index previous_index = 0;
   double previous_distance = 0.0;
 
   double distance(const KdTree& tree, const Vector3& point) {
-    if (known) {
-      const double upper = (point - previous_nearest).norm();
+    const Vector3* previous_nearest =
+        known ? &(*tree.dataset.points)[static_cast<std::size_t>(previous_index)] : nullptr;
+    if (known && accuracy > 0.0) {
+      const double upper = (point - *previous_nearest).norm();
       const double lower = previous_distance - (point - previous_point).norm();
       if (lower > 0.0 && upper <= (1.0 + accuracy) * lower) return upper;
     }
     Index nearest = 0;
     double nearest_squared = 0.0;
-    tree.knnSearch(point.data(), 1, &nearest, &nearest_squared);
+    nanoflann::KNNResultSet<double, Index> result(1);
+    result.init(&nearest, &nearest_squared);
+    if (known) {
+      // Exact search started with the previous point's nearest node as the best so far:
+      // the tree prunes with a tight bound from the first level on.
+      nearest = previous_index;
+      nearest_squared = (point - *previous_nearest).squaredNorm();
+    }
+    tree.findNeighbors(result, point.data(), nanoflann::SearchParams());
     known = true;
     previous_point = point;
-    previous_nearest = (*tree.dataset.points)[static_cast<std::size_t>(nearest)];
+    previous_index = nearest;
     previous_distance = std::sqrt(nearest_squared);
     return previous_distance;
   }
@@ -334,7 +345,7 @@ void deform_rotation(const IdwInput& input, const IdwOptions& options, IdwResult
   for (std::size_t b = 0; b < input.bodies.size(); ++b) {
     if (input.bodies[b].positions.empty()) continue;
     clouds[b].points = &input.bodies[b].positions;
-    trees[b] = std::make_unique<KdTree>(3, clouds[b], nanoflann::KDTreeSingleIndexAdaptorParams(10));
+    trees[b] = std::make_unique<KdTree>(3, clouds[b], nanoflann::KDTreeSingleIndexAdaptorParams(32));
     trees[b]->buildIndex();
   }
   const FitDimension dimension = fit_dimension(input.bodies);
