@@ -82,8 +82,7 @@ void run_deform(const DeformArguments& arguments) {
   std::vector<bool> valid;
   deform::DeformOptions options;
   options.keep_invalid = arguments.keep_invalid;
-  deform::deform_sequence(
-      mesh, setup.motion, *setup.method, log, options, [&](int step, const deform::DeformResult& result) {
+  auto each_step = [&](int step, const deform::DeformResult& result) {
         std::cout << "step " << step << ": before: " << format_summary(result.before) << '\n'
                   << "step " << step << ": after:  " << format_summary(result.after) << '\n';
         char change[160];
@@ -101,7 +100,9 @@ void run_deform(const DeformArguments& arguments) {
                     << " inverted cells (kept: --keep-invalid)\n";
         results.push_back(result.mesh.points);
         valid.push_back(result.valid);
-      });
+      };
+  options.invalid_advice = "--keep-invalid writes it anyway";
+  deform::deform_sequence(mesh, setup.motion, *setup.method, log, options, each_step);
   MixedMesh written = mesh;
   std::vector<std::filesystem::path> files;
   for (int step = 1; step <= steps; ++step) {

@@ -52,8 +52,11 @@ void add_generate_command(CLI::App& application) {
         log.warning("wrote the invalid mesh to " + path.string());
       }
     }
+    // Every deformation runs and is checked before anything is written: a failing
+    // [[deform]] step leaves no files.
+    const std::vector<DeformedMesh> deformed = run_deform_steps(result, options, log);
     for (const auto& path : write_outputs(result, options.output)) log.info("wrote " + path.string());
-    for (const auto& path : run_deform_steps(result, options, log)) log.info("wrote " + path.string());
+    for (const auto& path : write_deformed(result, deformed, options.output)) log.info("wrote " + path.string());
     if (!arguments->report.empty()) write_report(arguments->report, result.report);
     std::cout << table_row(result.report) << '\n';
   });

@@ -108,6 +108,11 @@ const void* Section::find_scalar(std::string_view key) {
         return value.is_number() ? values.front().is_number() : value.type() == values.front().type();
       });
   if (!scalars || values.front().is_array() || values.front().is_table()) return node;
+  // `--set` names a key by its dotted path, which does not say which entry of an array
+  // of tables it means.
+  if (in_array_)
+    fail(key, "'" + qualified(path_, key) +
+                  "' is inside an array of tables ([[...]]): a batch sweep (a list of values) cannot vary it");
   Sweep sweep{qualified(path_, key), {}};
   for (const toml::node& value : values) {
     // Floating-point values in their shortest round-trip form (0.3, not 0.2999…),
@@ -262,7 +267,9 @@ std::optional<Section> Section::optional_section(std::string_view key) {
   if (node == nullptr) return std::nullopt;
   if (!node->is_table())
     fail(key, "'" + qualified(path_, key) + "' must be a table, not " + type_name(*node));
-  return Section(document_, node->as_table(), qualified(path_, key));
+  Section child(document_, node->as_table(), qualified(path_, key));
+  child.in_array_ = in_array_;
+  return child;
 }
 
 std::vector<Section> Section::sections(std::string_view key) {
@@ -272,8 +279,10 @@ std::vector<Section> Section::sections(std::string_view key) {
   if (!node->is_array_of_tables())
     fail(key,
          "'" + qualified(path_, key) + "' must be an array of tables ([[" + qualified(path_, key) + "]])");
-  for (const toml::node& element : *node->as_array())
+  for (const toml::node& element : *node->as_array()) {
     result.emplace_back(document_, element.as_table(), qualified(path_, key));
+    result.back().in_array_ = true;
+  }
   return result;
 }
 

@@ -95,7 +95,8 @@ void deform_sequence(const MixedMesh& mesh, const Motion& motion, DeformationMet
       for (const InvalidCell& cell : result.invalid_examples)
         message << "; " << cell.entity << ' ' << cell.index << " at " << point_text(cell.location);
       if (result.invalid_count == 0) message << " (" << validate(result.mesh).summary() << ')';
-      message << "; nothing written (--keep-invalid writes it anyway)";
+      message << "; nothing written";
+      if (!options.invalid_advice.empty()) message << " (" << options.invalid_advice << ')';
       throw Error(message.str());
     }
     each_step(step, result);

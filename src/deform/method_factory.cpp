@@ -124,6 +124,7 @@ DeformSetup read_deform_setup(const std::filesystem::path& motion_file) {
 
 DeformStep read_deform_step(config::Section& section) {
   DeformStep step;
+  step.where = section.where();
   section.read("name", step.name);
   if (step.name.empty() || step.name.find_first_of("/\\") != std::string::npos)
     section.fail("name", "a [[deform]] step needs a name for its output files (no slashes)");
@@ -131,6 +132,8 @@ DeformStep read_deform_step(config::Section& section) {
   std::optional<config::Section> options = section.optional_section(step.motion.method);
   if (step.motion.method == "ara") {
     const AraOptions settings = options ? read_ara_options(*options) : AraOptions{};
+    if (!settings.cache_file.empty())
+      options->fail("cache", "no nearest-face cache in a [[deform]] step: every generated mesh differs");
     step.make_method = [settings] { return std::make_unique<AraMethod>(settings); };
   } else {
     const IdwOptions settings = options ? read_idw_options(*options) : IdwOptions{};

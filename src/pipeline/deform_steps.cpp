@@ -1,4 +1,5 @@
 // Mesh-then-deform: the [[deform]] steps of a generation config on the generated mesh.
+#include <algorithm>
 #include <cstdio>
 #include <sstream>
 
@@ -8,38 +9,61 @@
 
 namespace mixmesh {
 
-std::vector<std::filesystem::path> run_deform_steps(const GenerateResult& result, const GenerateOptions& options,
-                                                    const Log& log) {
-  std::vector<std::filesystem::path> written;
-  if (options.deform.empty()) return written;
+std::vector<DeformedMesh> run_deform_steps(const GenerateResult& result, const GenerateOptions& options,
+                                           const Log& log) {
+  std::vector<DeformedMesh> meshes;
+  if (options.deform.empty()) return meshes;
   if (!result.validity.valid())
     throw Error("deform: the generated mesh is invalid, no deformation run: " + result.validity.summary());
   for (const deform::DeformStep& step : options.deform) {
     const std::unique_ptr<deform::DeformationMethod> method = step.make_method();
-    std::vector<std::vector<Vector3>> points;
-    deform::deform_sequence(result.mesh, step.motion, *method, log, {},
-                            [&](int index, const deform::DeformResult& deformed) {
-                              std::ostringstream line;
-                              line << "deform " << step.name << " step " << index << '/' << step.motion.steps
-                                   << ": min scaled Jacobian " << deformed.after.min_scaled_jacobian
-                                   << ", wall-line angle max " << deformed.after.max_wall_angle << " deg";
-                              log.info(line.str());
-                              points.push_back(deformed.mesh.points);
-                            });
-    // Written only once every mesh of the step is known to be valid.
-    MixedMesh moved = result.mesh;
-    for (std::size_t index = 0; index < points.size(); ++index) {
-      moved.points = std::move(points[index]);
-      std::string stem = options.output.name + "_" + step.name;
-      if (points.size() > 1) {
-        char suffix[32];
-        std::snprintf(suffix, sizeof suffix, "_%04zu", index + 1);
-        stem += suffix;
-      }
-      for (const std::string& format : options.output.formats) {
-        written.push_back(options.output.folder / (stem + "." + format));
-        write_mesh(moved, written.back());
-      }
+    const std::string stem = options.output.name + "_" + step.name;
+    try {
+      deform::deform_sequence(
+          result.mesh, step.motion, *method, log, {}, [&](int index, const deform::DeformResult& deformed) {
+            DeformedMesh mesh;
+            mesh.stem = stem;
+            if (step.motion.steps > 1) {
+              char suffix[32];
+              std::snprintf(suffix, sizeof suffix, "_%04d", index);
+              mesh.stem += suffix;
+            }
+            mesh.points = deformed.mesh.points;
+            for (std::size_t node = 0; node < mesh.points.size(); ++node)
+              mesh.largest_displacement =
+                  std::max(mesh.largest_displacement, (mesh.points[node] - result.mesh.points[node]).norm());
+            std::ostringstream line;
+            line << "deform " << step.name << " step " << index << '/' << step.motion.steps
+                 << ": largest displacement " << mesh.largest_displacement << " m, min scaled Jacobian "
+                 << deformed.after.min_scaled_jacobian << ", wall-line angle max " << deformed.after.max_wall_angle
+                 << " deg";
+            log.info(line.str());
+            meshes.push_back(std::move(mesh));
+          });
+    } catch (const Error& error) {
+      throw Error(step.where + ": [[deform]] '" + step.name + "': " + error.what());
+    }
+  }
+  // Two steps must not write the same file ("a" with 3 steps and another named "a_0001").
+  for (std::size_t mesh = 0; mesh < meshes.size(); ++mesh)
+    for (std::size_t other = 0; other < mesh; ++other)
+      if (meshes[mesh].stem == meshes[other].stem)
+        throw Error("deform: two [[deform]] steps write " + meshes[mesh].stem + "; rename one");
+  return meshes;
+}
+
+std::vector<std::filesystem::path> write_deformed(const GenerateResult& result,
+                                                  const std::vector<DeformedMesh>& meshes,
+                                                  const OutputOptions& options) {
+  std::vector<std::filesystem::path> written;
+  if (meshes.empty()) return written;
+  std::filesystem::create_directories(options.folder);
+  MixedMesh moved = result.mesh;
+  for (const DeformedMesh& mesh : meshes) {
+    moved.points = mesh.points;
+    for (const std::string& format : options.formats) {
+      written.push_back(options.folder / (mesh.stem + "." + format));
+      write_mesh(moved, written.back());
     }
   }
   return written;

@@ -37,10 +37,20 @@ add_test(NAME pipeline_generate_then_deform
          COMMAND mixmesh-cli generate ${PROJECT_SOURCE_DIR}/cases/pipeline/wing_pitch.toml
                  --output-dir ${pipeline_folder}/deform)
 set_tests_properties(pipeline_generate_then_deform PROPERTIES LABELS regression FIXTURES_SETUP deformed_mesh
-                     PASS_REGULAR_EXPRESSION "wrote [^\n]*wing_pitch_ramp_0003.vtu"
+                     PASS_REGULAR_EXPRESSION "deform ramp step 3/3: largest displacement 0\\.[1-9][^\n]*\n.*wrote [^\n]*wing_pitch_ramp_0003.vtu"
                      FAIL_REGULAR_EXPRESSION "mixmesh: error|INVALID")
 add_test(NAME pipeline_check_mesh_deformed
          COMMAND ${MIXMESH_PYTHON} ${MIXMESH_CHECK_MESH} ${pipeline_folder}/deform/wing_pitch_ramp_0003.vtu
                  --no-foam -q)
 set_tests_properties(pipeline_check_mesh_deformed PROPERTIES LABELS regression
                      FIXTURES_REQUIRED deformed_mesh PASS_REGULAR_EXPRESSION "\nVALID")
+
+# A [[deform]] step whose mesh stays inverted (IDW on the nearly flat trailing-edge cells
+# of this coarse wing) fails naming the config line and the step, and writes no file at
+# all, not even the generated mesh or the steps before it.
+add_test(NAME pipeline_failed_deform_writes_nothing
+         COMMAND ${CMAKE_COMMAND} -DPROGRAM=$<TARGET_FILE:mixmesh-cli>
+                 -DCONFIG=${CMAKE_CURRENT_LIST_DIR}/pipeline/wing_pitch_idw.toml
+                 -DFOLDER=${pipeline_folder}/failed_deform -P ${CMAKE_CURRENT_LIST_DIR}/pipeline/expect_no_files.cmake)
+set_tests_properties(pipeline_failed_deform_writes_nothing PROPERTIES LABELS regression
+                     PASS_REGULAR_EXPRESSION "wing_pitch_idw.toml:[0-9]+:[0-9]+: \\[\\[deform\\]\\] 'idw': step 1: [0-9]+ cells stay inverted")

@@ -167,6 +167,34 @@ TEST(IdwRotationForm, SameResultOnAnyThreadCountAndCloseToExactDistances) {
   EXPECT_LT(difference, 2.0 * approximate.distance_accuracy * largest);
 }
 
+// The exact distance search is seeded with the previous point's nearest node; it must
+// give what a search from scratch gives (a volume point alone in its input), and the
+// same on any thread count.
+TEST(IdwRotationForm, SeededExactDistancesEqualASearchFromScratch) {
+  IdwInput input;
+  const Eigen::Matrix3d rotation = Eigen::AngleAxisd(0.3, Vector3::UnitY()).toRotationMatrix();
+  input.bodies.push_back(rigid_body(ellipsoid_nodes(400, 30), rotation, Vector3(0.1, 0.0, 0.0), Vector3::Zero()));
+  IdwBody farfield;
+  farfield.moving = false;
+  farfield.positions = ellipsoid_nodes(1500, 31);
+  for (Vector3& x : farfield.positions) x = 15.0 * x.normalized();
+  input.bodies.push_back(farfield);
+  input.volume_points = cloud(3000, 5.0, 32);
+  const IdwResult together = idw_deform(input);
+  IdwResult serial;
+  {
+    const tbb::global_control one_thread(tbb::global_control::max_allowed_parallelism, 1);
+    serial = idw_deform(input);
+  }
+  for (std::size_t i = 0; i < input.volume_points.size(); i += 7) {
+    IdwInput alone = input;
+    alone.volume_points = {input.volume_points[i]};
+    EXPECT_EQ(idw_deform(alone).displacements[0], together.displacements[i]) << "volume point " << i;
+  }
+  for (std::size_t i = 0; i < input.volume_points.size(); ++i)
+    EXPECT_EQ(serial.displacements[i], together.displacements[i]) << "volume point " << i;
+}
+
 TEST(IdwRotationForm, EachBodyCarriesItsOwnNeighbourhood) {
   IdwInput input;
   std::vector<Vector3> left = ellipsoid_nodes(200, 7), right = ellipsoid_nodes(200, 8);

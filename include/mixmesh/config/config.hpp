@@ -87,6 +87,7 @@ class Section {
   const void* table_;
   std::string path_;
   std::vector<std::string> used_;
+  bool in_array_ = false;  // inside an array of tables, where a batch sweep cannot reach
 };
 
 // A batch sweep: a scalar option given as an array of values, one run per value.

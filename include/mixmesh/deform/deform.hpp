@@ -97,6 +97,9 @@ struct QualitySummary {
 struct DeformOptions {
   // Write even when cells stay inverted (the CLI then names the file "…invalid…").
   bool keep_invalid = false;
+  // Appended in brackets to the error of a step whose cells stay inverted (what the
+  // caller offers instead, e.g. a command-line flag).
+  std::string invalid_advice;
 };
 
 struct InvalidCell {
@@ -155,10 +158,13 @@ DeformSetup read_deform_setup(const std::filesystem::path& motion_file);
 
 // A [[deform]] step of a generation config: a motion (keys as in a motion file, bodies
 // as [[deform.body]], method options as [deform.ara]/[deform.idw]) and a `name` for its
-// output files. It keeps the method's settings, not a method, so that runs in parallel
-// (a batch) each make their own. Unknown keys are errors with their file:line:column.
+// output files. It keeps the method's settings, not a method: each run of the step
+// makes a fresh one (an ARA method keeps the nearest faces of the mesh it last moved).
+// Unknown keys are errors with their file:line:column; an ARA `cache` file is refused
+// (every generated mesh differs).
 struct DeformStep {
   std::string name;
+  std::string where;  // file:line:column of the step, for messages
   Motion motion;
   std::function<std::unique_ptr<DeformationMethod>()> make_method;
 };

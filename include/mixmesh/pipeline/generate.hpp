@@ -92,13 +92,21 @@ GenerateResult generate_from_surface(const SurfaceMesh& surface, const GenerateO
 // the paths written. Throws, writing nothing, when the mesh is invalid.
 std::vector<std::filesystem::path> write_outputs(const GenerateResult& result, const OutputOptions& options);
 
-// Runs every [[deform]] step of options on the generated (valid) mesh and writes its
-// meshes in the output formats as NAME_STEPNAME.ext (NAME_STEPNAME_0003.ext in a
-// sequence). Each step's meshes are all checked before the first is written; a step
-// whose mesh stays invalid throws (deform::deform_sequence) and writes nothing.
-// Returns the paths written.
-std::vector<std::filesystem::path> run_deform_steps(const GenerateResult& result, const GenerateOptions& options,
-                                                    const Log& log);
+// Mesh-then-deform: every [[deform]] step of `options` run on the generated (valid)
+// mesh, each mesh checked; nothing is written. Throws mixmesh::Error naming the step
+// (config file:line and name) when a step fails.
+struct DeformedMesh {
+  std::string stem;  // NAME_STEPNAME, or NAME_STEPNAME_0003 for step 3 of a sequence
+  std::vector<Vector3> points;
+  double largest_displacement = 0.0;
+};
+std::vector<DeformedMesh> run_deform_steps(const GenerateResult& result, const GenerateOptions& options,
+                                           const Log& log);
+// The deformed meshes in every output format, each file written atomically. Returns
+// the paths written.
+std::vector<std::filesystem::path> write_deformed(const GenerateResult& result,
+                                                  const std::vector<DeformedMesh>& meshes,
+                                                  const OutputOptions& options);
 
 // The first offenders of each failed validity check, one per line, for error messages.
 std::string validity_details(const ValidityReport& validity);
