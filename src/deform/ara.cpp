@@ -13,6 +13,7 @@
 #include <limits>
 #include <sstream>
 
+#include "deform/ara_geometry.hpp"
 #include "deform/ara_smoothing.hpp"
 #include "deform/dual_mesh.hpp"
 #include "deform/rotation.hpp"
@@ -91,25 +92,6 @@ void pseudo_laplacian_weights(const Vector3& node, const Index* cells, std::size
 
 }  // namespace
 
-namespace detail {
-
-// The parts of the method that depend only on the undeformed mesh and the roles of its
-// markers, not on the motion.
-struct AraGeometry {
-  std::uint64_t connectivity = 0;
-  std::uint64_t points = 0;
-  std::vector<MarkerRole> marker_roles;
-  std::uint64_t nearest_key = 0;  // connectivity and wall faces (NearestFaces::mesh_hash)
-  DualMesh dual;
-  WallFaces walls;
-  std::vector<Vector3> centres;
-  std::vector<Vector3> wall_centres;
-  SmoothingStencil stencil;
-  std::vector<double> node_weights;         // eq. 24–26, per entry of dual.point_cells
-  std::vector<std::vector<Index>> colours;  // Gauss–Seidel only, built when first needed
-};
-
-}  // namespace detail
 
 namespace {
 
@@ -176,7 +158,15 @@ std::vector<Vector3> AraMethod::move(const MixedMesh& mesh, const BoundaryMotion
                             geometry_->marker_roles == boundary.marker_roles;
   if (!report_.geometry_cached) {
     geometry_.reset();  // release the old one before building the new one
-    geometry_ = prepare_geometry(mesh, boundary.marker_roles, connectivity, point_bits);
+    if (!options_.cache_file.empty() && std::filesystem::exists(options_.cache_file)) {
+      std::string why_not;
+      geometry_ = detail::read_ara_geometry(options_.cache_file, connectivity, point_bits,
+                                            boundary.marker_roles, why_not);
+      report_.geometry_from_file = geometry_ != nullptr;
+      log.detail("ara: geometry " + (geometry_ ? "read from " + options_.cache_file.string()
+                                               : "rebuilt (" + why_not + ")"));
+    }
+    if (!geometry_) geometry_ = prepare_geometry(mesh, boundary.marker_roles, connectivity, point_bits);
   }
   const detail::AraGeometry& geometry = *geometry_;
   const DualMesh& dual = geometry.dual;
@@ -215,7 +205,7 @@ std::vector<Vector3> AraMethod::move(const MixedMesh& mesh, const BoundaryMotion
     nearest_ = detail::find_nearest_faces(dual, walls, centres, points, options_.candidates);
     nearest_.point_count = points.size();
     nearest_.mesh_hash = geometry.nearest_key;
-    if (!options_.cache_file.empty()) write_nearest_faces(nearest_, options_.cache_file);
+    if (!options_.cache_file.empty()) detail::write_ara_cache(nearest_, geometry, options_.cache_file);
   }
   std::vector<double> first_distance;
   std::vector<double> second_distance;
@@ -416,7 +406,9 @@ std::vector<Vector3> AraMethod::move(const MixedMesh& mesh, const BoundaryMotion
           << smoothed.iterations << " iterations (r.m.s. " << smoothed.residual << ") "
           << report_.smoothing_seconds << " s, inverted after interpolation "
           << report_.inverted_after_interpolation << ", after " << report_.repair_passes << " repair passes "
-          << inverted << "; setup " << (report_.geometry_cached ? "(cached) " : "") << report_.setup_seconds
+          << inverted << "; setup "
+          << (report_.geometry_cached ? "(cached) " : report_.geometry_from_file ? "(from the cache file) " : "")
+          << report_.setup_seconds
           << " s, total " << report_.total_seconds << " s";
   log.detail(summary.str());
   return result;

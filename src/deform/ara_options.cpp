@@ -5,6 +5,7 @@
 #include <cstring>
 #include <fstream>
 
+#include "deform/ara_geometry.hpp"
 #include "mixmesh/core/atomic_file.hpp"
 #include "mixmesh/core/error.hpp"
 #include "mixmesh/deform/ara.hpp"
@@ -56,23 +57,28 @@ constexpr char cache_magic[8] = {'M', 'X', 'A', 'R', 'A', 'N', 'F', '2'};
 constexpr char previous_magic[8] = {'M', 'X', 'A', 'R', 'A', 'N', 'F', '1'};
 }  // namespace
 
+void detail::write_nearest_part(std::ostream& stream, const NearestFaces& nearest) {
+  const std::uint64_t counts[4] = {nearest.point_count, nearest.cell_count, nearest.wall_face_count,
+                                   nearest.mesh_hash};
+  stream.write(cache_magic, sizeof cache_magic);
+  stream.write(reinterpret_cast<const char*>(counts), sizeof counts);
+  stream.write(reinterpret_cast<const char*>(nearest.faces.data()),
+               static_cast<std::streamsize>(nearest.faces.size() * sizeof(nearest.faces[0])));
+}
+
 void write_nearest_faces(const NearestFaces& nearest, const std::filesystem::path& file) {
   write_atomically(file, [&](const std::filesystem::path& temporary) {
     std::ofstream stream(temporary, std::ios::binary);
     if (!stream) throw Error(temporary.string() + ": cannot open for writing");
-    const std::uint64_t counts[4] = {nearest.point_count, nearest.cell_count, nearest.wall_face_count,
-                                     nearest.mesh_hash};
-    stream.write(cache_magic, sizeof cache_magic);
-    stream.write(reinterpret_cast<const char*>(counts), sizeof counts);
-    stream.write(reinterpret_cast<const char*>(nearest.faces.data()),
-                 static_cast<std::streamsize>(nearest.faces.size() * sizeof(nearest.faces[0])));
+    detail::write_nearest_part(stream, nearest);
     if (!stream) throw Error(file.string() + ": write failed");
   });
 }
 
-NearestFaces read_nearest_faces(const std::filesystem::path& file) {
-  std::ifstream stream(file, std::ios::binary);
-  if (!stream) throw Error(file.string() + ": cannot open the nearest-face cache");
+namespace {
+
+// The magic and the counts; the face pairs follow.
+NearestFaces read_nearest_header(std::istream& stream, const std::filesystem::path& file) {
   char magic[8] = {};
   std::uint64_t counts[4] = {0, 0, 0, 0};
   stream.read(magic, sizeof magic);
@@ -89,6 +95,20 @@ NearestFaces read_nearest_faces(const std::filesystem::path& file) {
   nearest.cell_count = counts[1];
   nearest.wall_face_count = counts[2];
   nearest.mesh_hash = counts[3];
+  return nearest;
+}
+
+}  // namespace
+
+void detail::skip_nearest_part(std::istream& stream, const std::filesystem::path& file) {
+  const NearestFaces header = read_nearest_header(stream, file);
+  stream.seekg(static_cast<std::streamoff>(header.cell_count * sizeof(std::array<Index, 2>)), std::ios::cur);
+}
+
+NearestFaces read_nearest_faces(const std::filesystem::path& file) {
+  std::ifstream stream(file, std::ios::binary);
+  if (!stream) throw Error(file.string() + ": cannot open the nearest-face cache");
+  NearestFaces nearest = read_nearest_header(stream, file);
   nearest.faces.resize(nearest.cell_count);
   stream.read(reinterpret_cast<char*>(nearest.faces.data()),
               static_cast<std::streamsize>(nearest.faces.size() * sizeof(nearest.faces[0])));

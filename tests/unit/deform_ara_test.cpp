@@ -154,6 +154,52 @@ TEST(DeformAra, CachedNearestFacesGiveTheSameMesh) {
   std::filesystem::remove(file);
 }
 
+TEST(DeformAra, CacheFileKeepsTheGeometryOfTheSamePointsOnly) {
+  const MixedMesh mesh = testing::volume_o_grid(OGrid{}, testing::VolumeKind::hexahedron);
+  const BoundaryMotion boundary = boundary_motion(mesh, mesh, rotate_wall(10.0), 1);
+  const auto file = std::filesystem::temp_directory_path() / "mixmesh_deform_geometry_cache.bin";
+  std::filesystem::remove(file);
+  AraOptions options;
+  options.cache_file = file;
+  AraMethod writer(options);
+  const std::vector<Vector3> first = writer.move(mesh, boundary, quiet);
+  EXPECT_FALSE(writer.last_report().geometry_from_file);
+
+  AraMethod reader(options);
+  EXPECT_EQ(reader.move(mesh, boundary, quiet), first);
+  EXPECT_TRUE(reader.last_report().geometry_from_file);
+  EXPECT_TRUE(reader.last_report().cache_used);
+
+  // Moved points: the nearest faces still serve, the geometry is rebuilt.
+  MixedMesh moved = mesh;
+  for (Vector3& point : moved.points) point *= 1.001;
+  AraMethod mover(options);
+  mover.move(moved, boundary_motion(moved, moved, rotate_wall(10.0), 1), quiet);
+  EXPECT_FALSE(mover.last_report().geometry_from_file);
+  EXPECT_TRUE(mover.last_report().cache_used);
+
+  // A damaged or truncated geometry block is refused with one line, not half used.
+  const auto size = std::filesystem::file_size(file);
+  {
+    std::fstream stream(file, std::ios::binary | std::ios::in | std::ios::out);
+    stream.seekp(static_cast<std::streamoff>(size - 64));
+    stream.put('\x5a');
+  }
+  for (int damage = 0; damage < 2; ++damage) {
+    if (damage == 1) std::filesystem::resize_file(file, size - 1000);
+    AraMethod victim(options);
+    try {
+      victim.move(mesh, boundary, quiet);
+      ADD_FAILURE() << "a damaged cache was accepted";
+    } catch (const Error& error) {
+      const std::string message = error.what();
+      EXPECT_NE(message.find("damaged"), std::string::npos) << message;
+      EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+    }
+  }
+  std::filesystem::remove(file);
+}
+
 TEST(DeformAra, NearestFacesLieOnTheTwoBoundaries) {
   const OGrid grid;
   const MixedMesh mesh = testing::planar_o_grid(grid);

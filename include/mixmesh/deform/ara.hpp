@@ -76,9 +76,11 @@ struct AraOptions {
   double tolerance = 1e-4;
   int max_iterations = 500;
   int repair_passes = 10;
-  // File of cached nearest faces: read when it exists (an error when it was made for
-  // another mesh), written when it does not (empty: cache in memory only, across the
-  // steps of a sequence).
+  // Cache file: the nearest faces, and the geometry that depends on the undeformed mesh
+  // alone (dual mesh, smoothing matrix, interpolation weights). Read when it exists (an
+  // error when its faces were made for another mesh; its geometry is used only for the
+  // same points and marker roles), written when it does not. Empty: cache in memory
+  // only, across the steps of a sequence.
   std::filesystem::path cache_file;
 };
 
@@ -110,6 +112,7 @@ struct AraReport {
   double total_seconds = 0.0;
   bool cache_used = false;       // nearest faces from the cache
   bool geometry_cached = false;  // dual mesh, stencil and weights of the same undeformed mesh
+  bool geometry_from_file = false;  // the same, read from the cache file
   int spin_iterations = 0;
   int smoothing_iterations = 0;
   double smoothing_residual = 0.0;
