@@ -30,7 +30,7 @@ std::uint64_t mix_bytes(std::uint64_t hash, const char* bytes, std::size_t count
     hash = mix(hash, word);
   }
   std::uint64_t tail = 0;
-  std::memcpy(&tail, bytes + offset, count - offset);
+  if (count > offset) std::memcpy(&tail, bytes + offset, count - offset);  // (an empty list has no data)
   return mix(hash, tail);
 }
 
@@ -48,7 +48,7 @@ class BlockWriter {
 
  private:
   void bytes(const char* data, std::size_t count) {
-    stream_.write(data, static_cast<std::streamsize>(count));
+    if (count > 0) stream_.write(data, static_cast<std::streamsize>(count));
     checksum_ = mix_bytes(checksum_, data, count);
   }
   std::ostream& stream_;
@@ -79,7 +79,7 @@ class BlockReader {
  private:
   void bytes(char* data, std::size_t count) {
     if (count > remaining_) damaged("truncated");
-    stream_.read(data, static_cast<std::streamsize>(count));
+    if (count > 0) stream_.read(data, static_cast<std::streamsize>(count));
     if (!stream_) damaged("truncated");
     remaining_ -= count;
     checksum_ = mix_bytes(checksum_, data, count);
