@@ -118,6 +118,111 @@ std::vector<int> fan_ring(const Front& front, int column, bool& closed) {
   return {};
 }
 
+struct JunctionPlan {
+  int face = -1;  // surface face index of the split triangle
+  int corner = 0;
+  Index sheet_node = -1;  // the other node of the sheet's free edge at the junction
+};
+
+// Orders the fan of wall faces across the sheet at `node` from the wall face on one side
+// of the sheet to the one on the other, picks the triangle that straddles the sheet's
+// plane as the split face, and gives the fan faces before it the first side and those
+// after it the other (in corner_side; the split corner gets the side of the faces after
+// it). No plan (face -1) when the fan is not one chain between faces of opposite sides,
+// the straddling face is not a triangle, or the sheet has not exactly one free edge at
+// the node.
+JunctionPlan plan_junction(const SurfaceMesh& surface, const std::vector<SurfaceFace>& faces, Index node,
+                           const std::vector<std::pair<std::size_t, int>>& fan,
+                           const std::vector<std::size_t>& wall_faces,
+                           std::vector<std::array<int, 4>>& corner_side, const Vector3& sheet_normal) {
+  auto corner_node = [&](std::size_t f, int k) {
+    const int n = faces[f].corner_count;
+    return faces[f].nodes[static_cast<std::size_t>((k % n + n) % n)];
+  };
+  const std::size_t count = fan.size();
+  auto previous_of = [&](std::size_t i) { return corner_node(fan[i].first, fan[i].second - 1); };
+  auto next_of = [&](std::size_t i) { return corner_node(fan[i].first, fan[i].second + 1); };
+  std::size_t start = count;
+  for (std::size_t i = 0; i < count; ++i) {
+    bool follows = false;
+    for (std::size_t j = 0; j < count; ++j) follows |= j != i && next_of(j) == previous_of(i);
+    if (follows) continue;
+    if (start != count) return {};
+    start = i;
+  }
+  if (start == count) return {};
+  std::vector<std::size_t> order{start};
+  std::vector<char> used(count, 0);
+  used[start] = 1;
+  while (order.size() < count) {
+    std::size_t following = count;
+    for (std::size_t j = 0; j < count; ++j)
+      if (!used[j] && previous_of(j) == next_of(order.back())) following = j;
+    if (following == count) return {};
+    used[following] = 1;
+    order.push_back(following);
+  }
+  // Side of the wall face beyond an end of the fan (the one sharing edge node-other).
+  auto side_beyond = [&](Index other) {
+    for (std::size_t f : wall_faces)
+      for (int k = 0; k < faces[f].corner_count; ++k)
+        if (faces[f].nodes[static_cast<std::size_t>(k)] == node &&
+            corner_side[f][static_cast<std::size_t>(k)] != 0 &&
+            (corner_node(f, k + 1) == other || corner_node(f, k - 1) == other))
+          return corner_side[f][static_cast<std::size_t>(k)];
+    return 0;
+  };
+  const int side_start = side_beyond(previous_of(order.front()));
+  const int side_end = side_beyond(next_of(order.back()));
+  if (side_start == 0 || side_end != -side_start) return {};
+  const Vector3& here = surface.points[static_cast<std::size_t>(node)];
+  std::size_t split = order[count / 2];
+  for (std::size_t i : order) {
+    const double before = (surface.points[static_cast<std::size_t>(previous_of(i))] - here).dot(sheet_normal);
+    const double after = (surface.points[static_cast<std::size_t>(next_of(i))] - here).dot(sheet_normal);
+    if (before * after <= 0.0) {
+      split = i;
+      break;
+    }
+  }
+  if (faces[fan[split].first].corner_count != 3) return {};
+  // The sheet's free edge at the node: a sheet edge used by one sheet face and by no wall face.
+  std::unordered_map<Index, int> sheet_edges;
+  std::vector<Index> wall_neighbours;
+  for (std::size_t f = 0; f < faces.size(); ++f)
+    for (int k = 0; k < faces[f].corner_count; ++k) {
+      if (faces[f].nodes[static_cast<std::size_t>(k)] != node) continue;
+      for (Index other : {corner_node(f, k - 1), corner_node(f, k + 1)}) {
+        if (faces[f].wake)
+          ++sheet_edges[other];
+        else
+          wall_neighbours.push_back(other);
+      }
+    }
+  JunctionPlan plan;
+  int free_edges = 0;
+  for (const auto& [other, uses] : sheet_edges)
+    if (uses == 1 &&
+        std::find(wall_neighbours.begin(), wall_neighbours.end(), other) == wall_neighbours.end()) {
+      plan.sheet_node = other;
+      ++free_edges;
+    }
+  if (free_edges != 1) return {};
+  bool before_split = true;
+  for (std::size_t i : order) {
+    int& side = corner_side[fan[i].first][static_cast<std::size_t>(fan[i].second)];
+    if (i == split) {
+      side = side_end;
+      before_split = false;
+      continue;
+    }
+    side = before_split ? side_start : side_end;
+  }
+  plan.face = static_cast<int>(fan[split].first);
+  plan.corner = fan[split].second;
+  return plan;
+}
+
 }  // namespace
 
 Front build_front(const SurfaceMesh& surface) {
@@ -138,8 +243,39 @@ Front build_front(const SurfaceMesh& surface) {
       }
     }
 
-  // Faces within 45 degrees of the sheet's plane count as across it.
+  // Side of every wall face corner at a wake node: a face facing the same way as the
+  // sheet (the upper surface at the trailing edge) joins the line above it, one facing
+  // the other way the line below; faces within 45 degrees of the sheet's plane are
+  // across it (a tip cap).
   const double across_sheet = std::sqrt(0.5);
+  std::vector<std::array<int, 4>> corner_side(faces.size(), {0, 0, 0, 0});
+  std::unordered_map<Index, std::vector<std::pair<std::size_t, int>>> across;  // node -> (face, corner)
+  std::unordered_map<Index, std::vector<std::size_t>> wall_at_wake;
+  for (std::size_t f = 0; f < faces.size(); ++f) {
+    const SurfaceFace& face = faces[f];
+    if (face.wake) continue;
+    const Vector3 face_normal = area_vector(surface.points, face).normalized();
+    for (int k = 0; k < face.corner_count; ++k) {
+      const Index node = face.nodes[static_cast<std::size_t>(k)];
+      if (!on_wake[static_cast<std::size_t>(node)]) continue;
+      const double facing = face_normal.dot(wake_normal[static_cast<std::size_t>(node)].normalized());
+      const int side = facing > across_sheet ? +1 : facing < -across_sheet ? -1 : 0;
+      corner_side[f][static_cast<std::size_t>(k)] = side;
+      wall_at_wake[node].push_back(f);
+      if (side == 0) across[node].push_back({f, k});
+    }
+  }
+  std::vector<int> split_corner(faces.size(), -1);
+  std::vector<std::pair<std::size_t, Index>> junction_nodes;  // (split face, sheet free-edge node)
+  for (auto& [node, fan] : across) {
+    const JunctionPlan plan = plan_junction(surface, faces, node, fan, wall_at_wake[node], corner_side,
+                                            wake_normal[static_cast<std::size_t>(node)].normalized());
+    if (plan.face < 0) continue;
+    split_corner[static_cast<std::size_t>(plan.face)] = plan.corner;
+    junction_nodes.push_back({static_cast<std::size_t>(plan.face), plan.sheet_node});
+  }
+  std::sort(junction_nodes.begin(), junction_nodes.end());
+
   std::vector<std::array<int, 3>> node_columns(point_count, {-1, -1, -1});
   auto column = [&](Index node, int side) {
     int& slot = node_columns[static_cast<std::size_t>(node)][static_cast<std::size_t>(side + 1)];
@@ -154,11 +290,12 @@ Front build_front(const SurfaceMesh& surface) {
     return slot;
   };
 
-  for (const SurfaceFace& face : faces) {
+  for (std::size_t f = 0; f < faces.size(); ++f) {
+    const SurfaceFace& face = faces[f];
     const int n = face.corner_count;
     if (face.wake) {
       for (int side : {+1, -1}) {
-        FrontFace front_face{n, {-1, -1, -1, -1}, face.patch, false};
+        FrontFace front_face{n, {-1, -1, -1, -1}, face.patch, false, false};
         for (int k = 0; k < n; ++k) {
           const int source = side > 0 ? k : n - 1 - k;  // the lower side runs the other way round
           front_face.columns[static_cast<std::size_t>(k)] =
@@ -168,22 +305,45 @@ Front build_front(const SurfaceMesh& surface) {
       }
       continue;
     }
-    FrontFace front_face{n, {-1, -1, -1, -1}, face.patch, true};
-    const Vector3 face_normal = area_vector(surface.points, face).normalized();
+    FrontFace front_face{n, {-1, -1, -1, -1}, face.patch, true, false};
+    if (split_corner[f] >= 0) {
+      // Triangle (t, a, b) split at t: quad (t_a, a, b, t_b), t_a the line on the side of
+      // edge t-a, t_b the one on the side of edge b-t.
+      const int k = split_corner[f];
+      const Index t = face.nodes[static_cast<std::size_t>(k)];
+      const int side_after = corner_side[f][static_cast<std::size_t>(k)];
+      front_face.corner_count = 4;
+      front_face.split = true;
+      front_face.columns = {
+          column(t, side_after), column(face.nodes[static_cast<std::size_t>((k + 1) % 3)], 0),
+          column(face.nodes[static_cast<std::size_t>((k + 2) % 3)], 0), column(t, -side_after)};
+      front.faces.push_back(front_face);
+      continue;
+    }
     for (int k = 0; k < n; ++k) {
       const Index node = face.nodes[static_cast<std::size_t>(k)];
-      int side = 0;
-      if (on_wake[static_cast<std::size_t>(node)]) {
-        // A wall face facing the same way as the sheet (the upper surface at the
-        // trailing edge) joins the line above it, one facing the other way the line
-        // below; a face across the sheet (a tip cap) gets a line of its own, so no
-        // cell has to bridge the two sides.
-        const double facing = face_normal.dot(wake_normal[static_cast<std::size_t>(node)].normalized());
-        side = facing > across_sheet ? +1 : facing < -across_sheet ? -1 : 0;
-      }
-      front_face.columns[static_cast<std::size_t>(k)] = column(node, side);
+      front_face.columns[static_cast<std::size_t>(k)] =
+          column(node, corner_side[f][static_cast<std::size_t>(k)]);
     }
     front.faces.push_back(front_face);
+  }
+  // The front faces are the surface's wall faces in order, each wake face twice.
+  std::vector<int> front_face_of(faces.size(), -1);
+  for (std::size_t f = 0, next = 0; f < faces.size(); ++f) {
+    front_face_of[f] = static_cast<int>(next);
+    next += faces[f].wake ? 2 : 1;
+  }
+  for (const auto& [f, sheet_node] : junction_nodes) {
+    Junction junction;
+    junction.face = front_face_of[f];
+    const FrontFace& split = front.faces[static_cast<std::size_t>(junction.face)];
+    for (int end : {0, 1}) {
+      const int line = split.columns[end == 0 ? 0 : 3];
+      junction.sheet[static_cast<std::size_t>(end)] =
+          node_columns[static_cast<std::size_t>(sheet_node)]
+                      [static_cast<std::size_t>(front.column_side[static_cast<std::size_t>(line)] + 1)];
+    }
+    front.junctions.push_back(junction);
   }
 
   const std::size_t column_count = front.column_node.size();
@@ -253,6 +413,19 @@ Front build_front(const SurfaceMesh& surface) {
     if (ring.size() < 3) continue;
     front.ring[c] = ring;
     front.neighbourhood[c] = Neighbourhood::ring;
+  }
+
+  // The two lines of a split corner (free columns, whose directions are averaged with
+  // their fans') do not average with each other: one serves the faces above the sheet,
+  // the other those below.
+  for (const Junction& junction : front.junctions) {
+    const FrontFace& split = front.faces[static_cast<std::size_t>(junction.face)];
+    for (int end : {0, 3}) {
+      std::vector<int>& ring =
+          front.ring[static_cast<std::size_t>(split.columns[static_cast<std::size_t>(end)])];
+      const int partner = split.columns[static_cast<std::size_t>(3 - end)];
+      ring.erase(std::remove(ring.begin(), ring.end(), partner), ring.end());
+    }
   }
 
   // Structured stencils for the interior nodes of structured patches.

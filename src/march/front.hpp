@@ -25,6 +25,21 @@ struct FrontFace {
   std::array<int, 4> columns{-1, -1, -1, -1};
   int patch = 0;     // region index (structured patches first, then triangle patches)
   bool wall = true;  // a wall face (false: a wake face, interior to the mesh)
+  // A wall triangle whose corner at a sheet junction marches on both sheet lines: four
+  // columns, corners 3 and 0 start at the same surface node (see Junction).
+  bool split = false;
+};
+
+// Where a wall fan across a sheet (a tip cap) meets the sheet's free edge (the tip
+// trailing edge): the lines above and below the sheet must both reach the wall faces of
+// the fan, or a gap between them would open at the wall. One triangle of the fan (the
+// split face) marches on both lines: its first cell has a triangle at the bottom and a
+// quad on top and is cut into pyramids and tetrahedra about a point inside it; every
+// cell above is a hexahedron. The first cell of the gap between the two lines along the
+// sheet's free edge is a prism, so the cut cell stays inside the layers.
+struct Junction {
+  int face = -1;                     // the split face
+  std::array<int, 2> sheet{-1, -1};  // sheet columns next to its corners 0 and 3 along the free edge
 };
 
 // A front edge with a single face: the sides along it are boundary faces.
@@ -55,6 +70,7 @@ struct Front {
   std::vector<FreeEdge> free_edges;
   std::vector<SharedEdge> shared_edges;
   std::vector<std::string> patch_names;
+  std::vector<Junction> junctions;
 };
 
 // Throws mixmesh::Error naming the patch / node for indices out of range, degenerate

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 
+#include "junction.hpp"
 #include "mixmesh/mesh/cell_geometry.hpp"
 
 namespace mixmesh::march_detail {
@@ -56,6 +57,14 @@ std::vector<int> invalid_cells(const Front& front, const std::vector<int>& faces
                                const std::vector<Vector3>& bottom, const std::vector<Vector3>& top) {
   std::vector<char> bad(faces.size(), 0);
   tbb::parallel_for(std::size_t{0}, faces.size(), [&](std::size_t n) {
+    const FrontFace& f = front.faces[static_cast<std::size_t>(faces[n])];
+    if (f.split &&
+        bottom[static_cast<std::size_t>(f.columns[0])] == bottom[static_cast<std::size_t>(f.columns[3])]) {
+      // The first cell of a split face: its cut pieces and the prism between the sheet lines.
+      const Junction* junction = junction_of(front, faces[n]);
+      bad[n] = junction == nullptr || !junction_valid(junction_cells(front, *junction, bottom, top));
+      return;
+    }
     std::vector<Vector3> points;
     const CellType type = swept_cell(front, faces[n], bottom, top, points);
     static constexpr std::array<Index, 8> local{0, 1, 2, 3, 4, 5, 6, 7};

@@ -1,5 +1,7 @@
 #include "layer_mesh.hpp"
 
+#include "junction.hpp"
+
 namespace mixmesh::march_detail {
 
 namespace {
@@ -19,10 +21,78 @@ std::array<Index, 4> side_face(const Front& front, const BoundaryLayer& result, 
           column_point(result, u, layer + 1)};
 }
 
+// Global point numbers of the junction's local points (junction.hpp) between layers 0
+// and 1; the centre is -1 (it is a new point), and the cells computed from the mesh.
+std::array<Index, 11> junction_indices(const Front& front, const Junction& junction,
+                                       const BoundaryLayer& result, JunctionCells& cells) {
+  const FrontFace& f = front.faces[static_cast<std::size_t>(junction.face)];
+  const std::array<int, 6> used{f.columns[0], f.columns[1],      f.columns[2],
+                                f.columns[3], junction.sheet[0], junction.sheet[1]};
+  std::vector<Vector3> bottom(result.column_points.size(), Vector3::Zero()), top = bottom;
+  for (int c : used) {
+    bottom[static_cast<std::size_t>(c)] =
+        result.mesh.points[static_cast<std::size_t>(column_point(result, c, 0))];
+    top[static_cast<std::size_t>(c)] =
+        result.mesh.points[static_cast<std::size_t>(column_point(result, c, 1))];
+  }
+  cells = junction_cells(front, junction, bottom, top);
+  return {column_point(result, f.columns[0], 0),      column_point(result, f.columns[1], 0),
+          column_point(result, f.columns[2], 0),      column_point(result, f.columns[0], 1),
+          column_point(result, f.columns[1], 1),      column_point(result, f.columns[2], 1),
+          column_point(result, f.columns[3], 1),      -1,
+          column_point(result, junction.sheet[0], 0), column_point(result, junction.sheet[0], 1),
+          column_point(result, junction.sheet[1], 1)};
+}
+
+// The first cells of a split face: the pieces of its cut cell about a new centre point
+// and the prism between the sheet lines.
+void add_junction_cells(const Front& front, const Junction& junction, BoundaryLayer& result) {
+  JunctionCells cells;
+  std::array<Index, 11> global = junction_indices(front, junction, result, cells);
+  global[centre] = static_cast<Index>(result.mesh.points.size());
+  result.mesh.points.push_back(cells.points[centre]);
+  const int patch = front.faces[static_cast<std::size_t>(junction.face)].patch;
+  for (const JunctionCell& cell : cells.cells) {
+    std::vector<Index> nodes;
+    for (int local : cell.nodes) nodes.push_back(global[static_cast<std::size_t>(local)]);
+    result.mesh.add_cell(cell.type, nodes.data(), patch);
+    if (cell.type == CellType::prism) {
+      result.prism_face.push_back(junction.face);
+      result.prism_layer.push_back(0);
+    } else if (cell.type == CellType::pyramid) {
+      result.pyramid_face.push_back(junction.face);
+    } else {
+      result.tetrahedron_face.push_back(junction.face);
+    }
+  }
+}
+
+// True for the side faces in layer 0 that the junction's cells replace: the split
+// face's collapsed edge and the sheet's free edges at its two lines.
+bool replaced_by_junction(const Front& front, const FreeEdge& edge) {
+  const FrontFace& f = front.faces[static_cast<std::size_t>(edge.face)];
+  const int u = f.columns[static_cast<std::size_t>(edge.corner)];
+  const int v = f.columns[static_cast<std::size_t>((edge.corner + 1) % f.corner_count)];
+  for (const Junction& junction : front.junctions) {
+    const FrontFace& split = front.faces[static_cast<std::size_t>(junction.face)];
+    const std::array<std::array<int, 2>, 3> edges{{{split.columns[3], split.columns[0]},
+                                                   {split.columns[0], junction.sheet[0]},
+                                                   {split.columns[3], junction.sheet[1]}}};
+    for (const auto& pair : edges)
+      if ((u == pair[0] && v == pair[1]) || (u == pair[1] && v == pair[0])) return true;
+  }
+  return false;
+}
+
 }  // namespace
 
 void add_swept_cell(const Front& front, int face, int layer, BoundaryLayer& result) {
   const FrontFace& f = front.faces[static_cast<std::size_t>(face)];
+  if (f.split && layer == 0) {
+    const Junction* junction = junction_of(front, face);
+    if (junction) add_junction_cells(front, *junction, result);
+    return;
+  }
   auto at = [&](int k, int level) {
     return column_point(result, f.columns[static_cast<std::size_t>(k)], level);
   };
@@ -57,8 +127,12 @@ void add_boundary_faces(const Front& front, const MarchOptions& options, Boundar
       top[static_cast<std::size_t>(k)] = column_point(result, f.columns[static_cast<std::size_t>(k)], layers);
     }
     const FaceType type = f.corner_count == 4 ? FaceType::quad : FaceType::triangle;
-    if (f.wall)
-      mesh.add_face(type, bottom.data(), mesh.marker(front.patch_names[static_cast<std::size_t>(f.patch)]));
+    if (f.wall) {
+      // A split face's wall is its triangle: the bottom lists corner 0's wall point
+      // last, after corner 3's, which is the same point.
+      mesh.add_face(f.split ? FaceType::triangle : type, bottom.data(),
+                    mesh.marker(front.patch_names[static_cast<std::size_t>(f.patch)]));
+    }
     mesh.add_face(type, top.data(), hull);
   }
   // Sides along free edges of the front.
@@ -69,9 +143,23 @@ void add_boundary_faces(const Front& front, const MarchOptions& options, Boundar
     const bool symmetry =
         front.on_symmetry[static_cast<std::size_t>(u)] && front.on_symmetry[static_cast<std::size_t>(v)];
     const int marker = mesh.marker(symmetry ? options.symmetry_marker : options.hull_side_marker);
-    for (int layer = 0; layer < result.face_layers[static_cast<std::size_t>(edge.face)]; ++layer) {
+    const bool junction = replaced_by_junction(front, edge);
+    for (int layer = junction ? 1 : 0; layer < result.face_layers[static_cast<std::size_t>(edge.face)];
+         ++layer) {
       const auto nodes = side_face(front, result, edge.face, edge.corner, layer);
       mesh.add_face(FaceType::quad, nodes.data(), marker);
+    }
+  }
+  // The junction prisms' faces towards the far field.
+  const int hull_side = mesh.marker(options.hull_side_marker);
+  for (const Junction& junction : front.junctions) {
+    if (result.face_layers[static_cast<std::size_t>(junction.face)] == 0) continue;
+    JunctionCells cells;
+    const std::array<Index, 11> global = junction_indices(front, junction, result, cells);
+    for (const std::vector<int>& face : cells.hull_faces) {
+      std::array<Index, 4> nodes{};
+      for (std::size_t k = 0; k < face.size(); ++k) nodes[k] = global[static_cast<std::size_t>(face[k])];
+      mesh.add_face(face.size() == 4 ? FaceType::quad : FaceType::triangle, nodes.data(), hull_side);
     }
   }
   // Sides of a column standing above its stopped neighbour belong to the hull.

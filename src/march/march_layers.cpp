@@ -1,15 +1,19 @@
 #include "mixmesh/march/march_layers.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 #include <sstream>
+
+#include <Eigen/Geometry>
 
 #include "front.hpp"
 #include "layer_checks.hpp"
 #include "layer_mesh.hpp"
 #include "layer_solver.hpp"
 #include "mixmesh/core/error.hpp"
+#include "mixmesh/mesh/cell_geometry.hpp"
 
 namespace mixmesh {
 
@@ -33,6 +37,12 @@ std::vector<Vector3> column_normals(const Front& front, const std::vector<Vector
                                     const std::vector<Vector3>& fallback, const std::vector<char>& on_wall,
                                     double wake_weight) {
   std::vector<Vector3> sum(positions.size(), Vector3::Zero());
+  auto add_corner = [&](std::size_t column, double weight, const Vector3& out, const Vector3& in) {
+    const Vector3 corner = out.cross(in);
+    const double angle = std::atan2(corner.norm(), out.dot(in));
+    sum[column] += weight * angle * unit_or(corner, Vector3::Zero());
+  };
+  std::vector<std::size_t> unopened;  // split faces whose two lines still start at one point
   for (std::size_t face = 0; face < front.faces.size(); ++face) {
     if (!face_active[face]) continue;
     const FrontFace& f = front.faces[face];
@@ -42,6 +52,8 @@ std::vector<Vector3> column_normals(const Front& front, const std::vector<Vector
     };
     Vector3 area = Vector3::Zero();
     for (int k = 0; k < n; ++k) area += at(k).cross(at(k + 1));
+    const bool opening = angle_weighted && f.split && at(0) == at(3);
+    if (opening) unopened.push_back(face);
     for (int k = 0; k < n; ++k) {
       const auto column = static_cast<std::size_t>(f.columns[static_cast<std::size_t>(k)]);
       const double weight = !f.wall && on_wall[column] ? wake_weight : 1.0;
@@ -49,12 +61,23 @@ std::vector<Vector3> column_normals(const Front& front, const std::vector<Vector
         sum[column] += 0.5 * weight * area;
         continue;
       }
-      const Vector3 out = at(k + 1) - at(k);
-      const Vector3 in = at(k - 1) - at(k);
-      const Vector3 corner = out.cross(in);
-      const double angle = std::atan2(corner.norm(), out.dot(in));
-      sum[column] += weight * angle * unit_or(corner, Vector3::Zero());
+      if (opening && (k == 0 || k == 3)) continue;
+      add_corner(column, weight, at(k + 1) - at(k), at(k - 1) - at(k));
     }
+  }
+  // The corner of an unopened split face at each of its two lines is the corner of the
+  // quad it opens into: its edge between the lines opens along the difference of their
+  // normals from the other faces (one line above the sheet, one below).
+  const std::vector<Vector3> provisional = sum;
+  for (std::size_t face : unopened) {
+    const FrontFace& f = front.faces[face];
+    const auto first = static_cast<std::size_t>(f.columns[0]);
+    const auto last = static_cast<std::size_t>(f.columns[3]);
+    const Vector3 opening =
+        unit_or(provisional[last], Vector3::Zero()) - unit_or(provisional[first], Vector3::Zero());
+    const Vector3& wall_point = positions[first];
+    add_corner(first, 1.0, positions[static_cast<std::size_t>(f.columns[1])] - wall_point, opening);
+    add_corner(last, 1.0, -opening, positions[static_cast<std::size_t>(f.columns[2])] - wall_point);
   }
   std::vector<Vector3> normals(positions.size());
   for (std::size_t c = 0; c < positions.size(); ++c) {
@@ -86,6 +109,9 @@ void check_options(const MarchOptions& options) {
     throw Error("march: unknown layer solve " + std::to_string(static_cast<int>(options.layer_solve)));
   if (options.step_reductions < 0) throw Error("march: step reductions must be >= 0");
   if (options.direction_smoothing_passes < 0) throw Error("march: direction smoothing passes must be >= 0");
+  if (!(options.maximum_turn_degrees >= 0.0 && options.maximum_turn_degrees <= 180.0))
+    throw Error("march: maximum turn per layer must lie in [0, 180] degrees, got " +
+                std::to_string(options.maximum_turn_degrees));
 }
 
 std::string scientific(double value) {
@@ -192,6 +218,11 @@ BoundaryLayer march_layers(const SurfaceMesh& surface, const MarchOptions& optio
         on_wall[static_cast<std::size_t>(f.columns[static_cast<std::size_t>(k)])] = 1;
   const std::vector<std::vector<Vector3>> conormals = end_conormals(front, current, on_wall);
   std::vector<Vector3> direction(column_count, Vector3::UnitZ());
+  std::vector<char> junction_line(column_count, 0);
+  for (const march_detail::Junction& junction : front.junctions)
+    for (int k : {0, 3})
+      junction_line[static_cast<std::size_t>(
+          front.faces[static_cast<std::size_t>(junction.face)].columns[static_cast<std::size_t>(k)])] = 1;
   direction = column_normals(front, current, face_active, true, direction, on_wall, 1.0);
   previous = current;
 
@@ -199,6 +230,7 @@ BoundaryLayer march_layers(const SurfaceMesh& surface, const MarchOptions& optio
   report.layers_requested = static_cast<int>(steps.size());
   report.first_spacing = steps.front();
   std::map<int, StoppedRegion> stopped;
+  std::vector<Vector3> first_normal;
   std::vector<char> node_stopped(surface.points.size(), 0);
 
   for (int layer = 0; layer < static_cast<int>(steps.size()); ++layer) {
@@ -208,8 +240,17 @@ BoundaryLayer march_layers(const SurfaceMesh& surface, const MarchOptions& optio
         for (int k = 0; k < front.faces[face].corner_count; ++k)
           column_active[static_cast<std::size_t>(front.faces[face].columns[static_cast<std::size_t>(k)])] = 1;
     const double release = smoothed ? release_weight(options, layer) : 1.0;
-    const std::vector<Vector3> normal =
+    std::vector<Vector3> normal =
         column_normals(front, current, face_active, smoothed, direction, on_wall, release);
+    // The two lines of a junction keep their first normal: the faces around them shear
+    // against each other (the wall triangle's lines turn round the tip with the
+    // smoothing, the sheet's lines do not), so their layer normal turns upstream and
+    // feeds that shear back into the lines.
+    if (smoothed) {
+      for (std::size_t c = 0; c < column_count; ++c)
+        if (junction_line[c] && layer > 0) normal[c] = first_normal[c];
+      if (layer == 0) first_normal = normal;
+    }
 
     // Predictor: the layer normal, blended with the previous marching direction.
     const double memory = smoothed && layer > 0 ? options.direction_memory : 0.0;
@@ -222,6 +263,15 @@ BoundaryLayer march_layers(const SurfaceMesh& surface, const MarchOptions& optio
         predicted_direction[c] =
             unit_or(Vector3(predicted_direction[c].x(), 0.0, predicted_direction[c].z()), normal[c]);
     }
+    // At a junction the sheet lines next to the split face's lines start parallel to
+    // them, so the prism between the two sheet lines there has two equal triangles.
+    if (layer == 0)
+      for (const march_detail::Junction& junction : front.junctions)
+        for (int end : {0, 1}) {
+          const FrontFace& split = front.faces[static_cast<std::size_t>(junction.face)];
+          predicted_direction[static_cast<std::size_t>(junction.sheet[static_cast<std::size_t>(end)])] =
+              predicted_direction[static_cast<std::size_t>(split.columns[end == 0 ? 0 : 3])];
+        }
     std::vector<Vector3> next(column_count);
     for (std::size_t c = 0; c < column_count; ++c) next[c] = current[c] + step[c] * predicted_direction[c];
 
@@ -270,6 +320,19 @@ BoundaryLayer march_layers(const SurfaceMesh& surface, const MarchOptions& optio
           next[c] = current[c] + step[c] * unit_or((1.0 - release) * own + release * mean, own);
         }
     }
+    // Turn limit: a line turns by at most maximum_turn_degrees per layer. The corrector
+    // and the direction smoothing bend the lines most in the outer layers, where the
+    // steps become as long as the surface cells are wide (convex tip, leading and
+    // trailing edges); the limit spreads that bend over more layers.
+    const double turn_limit = options.maximum_turn_degrees * M_PI / 180.0;
+    if (smoothed && turn_limit > 0.0 && layer > 0)
+      for (std::size_t c = 0; c < column_count; ++c) {
+        const Vector3 before = unit_or(current[c] - previous[c], normal[c]);
+        const Vector3 after = unit_or(next[c] - current[c], before);
+        const Vector3 axis = before.cross(after);
+        if (std::atan2(axis.norm(), before.dot(after)) <= turn_limit) continue;
+        next[c] = current[c] + step[c] * (Eigen::AngleAxisd(turn_limit, axis.normalized()) * before);
+      }
     for (std::size_t c = 0; c < column_count; ++c) {
       next[c] = keep_in_sheet_end(current[c], next[c], conormals[c]);
       if (front.on_symmetry[c]) next[c].y() = surface.symmetry_y;
@@ -377,6 +440,12 @@ BoundaryLayer march_layers(const SurfaceMesh& surface, const MarchOptions& optio
     report.stopped.push_back(region);
   }
   report.stopped_nodes = static_cast<int>(std::count(node_stopped.begin(), node_stopped.end(), 1));
+  report.junctions = static_cast<int>(result.tetrahedron_face.size() / 2);
+  for (CellType type : {CellType::pyramid, CellType::tetrahedron})
+    for (std::size_t cell = 0; cell < result.mesh.cell_count(type); ++cell)
+      report.junction_minimum_scaled_jacobian =
+          std::min(report.junction_minimum_scaled_jacobian,
+                   cell_shape(type, result.mesh.points, result.mesh.cell(type, cell)).min_corner_jacobian);
   report.seconds = stopwatch.seconds();
   if (log) {
     log->info("march: " + std::to_string(report.layers_completed) + " of " +
@@ -384,6 +453,11 @@ BoundaryLayer march_layers(const SurfaceMesh& surface, const MarchOptions& optio
               std::to_string(report.first_spacing) + " m, thickness " +
               std::to_string(report.total_thickness) + " m, " + std::to_string(result.mesh.cell_count()) +
               " cells");
+    if (report.junctions > 0)
+      log->info("march: " + std::to_string(report.junctions) +
+                " junction(s) of a sheet's free edge with the wall closed; smallest scaled Jacobian of their "
+                "cut first cells " +
+                scientific(report.junction_minimum_scaled_jacobian));
     for (const StoppedRegion& region : report.stopped)
       log->warning("march: " + std::to_string(region.faces) + " faces stopped at layer " +
                    std::to_string(region.layer) + " near " + point_text(region.location));

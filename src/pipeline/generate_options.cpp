@@ -22,8 +22,9 @@ using config::Bounds;
 //   total_thickness = 0.0
 //   method = "smoothed"        # or "normal": the plain extrusion baseline
 //   layer_solve = "sweeps"     # or "sparse" (then layer_tolerance = 1e-4)
-//   sweeps = 12, orthogonal_layers = 3, release_layers = 10, direction_memory = 0.5
-//   step_reductions = 3, self_intersection_check = true
+//   sweeps = 12, orthogonal_layers = 3, release_layers = 20, direction_memory = 0.5
+//   step_reductions = 3, maximum_turn = 1.0 (degrees per layer; 0: no limit),
+//   self_intersection_check = true
 MarchOptions read_march_options(config::Section& table) {
   MarchOptions options;
   SpacingOptions& spacing = options.spacing;
@@ -53,6 +54,7 @@ MarchOptions read_march_options(config::Section& table) {
   table.read("release_layers", options.release_layers, Bounds::at_least(0));
   table.read("direction_memory", options.direction_memory, Bounds::between(0, 1));
   table.read("step_reductions", options.step_reductions, Bounds::at_least(0));
+  table.read("maximum_turn", options.maximum_turn_degrees, Bounds::between(0, 180));
   table.read("self_intersection_check", options.check_self_intersection);
   table.finish();
   return options;

@@ -150,6 +150,38 @@ TEST(MarchLayers, RejectsBadSurfaces) {
   MarchOptions bad;
   bad.sweeps = -1;
   EXPECT_THROW(march_layers(march_surfaces::flat_plate(4, 4), bad), Error);
+  for (double turn : {-1.0, 181.0, std::nan("")}) {
+    MarchOptions bad_turn;
+    bad_turn.maximum_turn_degrees = turn;
+    EXPECT_THROW(march_layers(march_surfaces::flat_plate(4, 4), bad_turn), Error);
+  }
+}
+
+TEST(MarchLayers, TurnLimitBoundsTheTurnOfEveryLine) {
+  // Lines round a cylinder patch bend as the layers grow as thick as its cells are
+  // wide; with the limit no segment turns by more than it (no step was retried here).
+  const SurfaceMesh cylinder = march_surfaces::cylinder_patch(17, 9);
+  MarchOptions options = plate_options(24, 0.002, 1.3);
+  options.maximum_turn_degrees = 0.0;
+  const BoundaryLayer free_lines = march_layers(cylinder, options);
+  options.maximum_turn_degrees = 0.5;
+  const BoundaryLayer limited = march_layers(cylinder, options);
+  ASSERT_EQ(limited.report.reduced_steps, 0);
+  EXPECT_EQ(invalid_cell_count(limited.mesh), 0);
+  auto largest_turn = [](const BoundaryLayer& layer) {
+    double largest = 0.0;
+    for (const auto& column : layer.column_points)
+      for (std::size_t k = 1; k + 1 < column.size(); ++k) {
+        const Vector3 below = layer.mesh.points[static_cast<std::size_t>(column[k])] -
+                              layer.mesh.points[static_cast<std::size_t>(column[k - 1])];
+        const Vector3 above = layer.mesh.points[static_cast<std::size_t>(column[k + 1])] -
+                              layer.mesh.points[static_cast<std::size_t>(column[k])];
+        largest = std::max(largest, std::atan2(below.cross(above).norm(), below.dot(above)) * 180.0 / M_PI);
+      }
+    return largest;
+  };
+  EXPECT_GT(largest_turn(free_lines), 0.5);
+  EXPECT_LE(largest_turn(limited), 0.5 + 1e-9);
 }
 
 }  // namespace

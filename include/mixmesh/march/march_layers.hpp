@@ -6,7 +6,9 @@
 // Each surface node marches along one line per side: wall nodes have one line, the
 // nodes of wake patches (floating sheets, C-type) have one line above and one below
 // the sheet; wall faces that touch a wake node (the trailing edge) take the line on
-// their side of the sheet, so the wing's layers and the wake's layers join with no gap.
+// their side of the sheet, so the wing's layers and the wake's layers join with no gap;
+// where wall faces across the sheet (a tip cap) meet the sheet's free edge, one cap
+// triangle marches on both lines (a junction), so the layers stay closed there too.
 // Every cell that is emitted has passed cell_shape (positive volume, subtetrahedra
 // and corner Jacobians) and a self-intersection test of the new layer front; where a
 // layer cannot be added the column of that face stops (see BoundaryLayer).
@@ -53,6 +55,10 @@ struct MarchOptions {
   double direction_memory = 0.5;
   // Passes of direction averaging with the neighbouring lines per released layer.
   int direction_smoothing_passes = 10;
+  // Smoothed march: largest angle (degrees) between successive segments of a line; a
+  // line the corrector and the smoothing would turn further is turned by this much, and
+  // the rest of the turn is left to the next layers. 0: no limit.
+  double maximum_turn_degrees = 1.0;
   // Safety: halve the step of the nodes of a failed cell this many times before the
   // column stops.
   int step_reductions = 3;
@@ -84,6 +90,11 @@ struct MarchReport {
   // of a layer (node change of its last iteration / node step).
   int corrector_iterations = 0;
   double corrector_change = 0.0;
+  // Junctions closed (a wall fan across a sheet meeting the sheet's free edge: the tip
+  // trailing edge) and the smallest corner Jacobian / edge lengths of the pyramids and
+  // tetrahedra of their cut first cells (1 when there are none).
+  int junctions = 0;
+  double junction_minimum_scaled_jacobian = 1.0;
   double seconds = 0.0;
 };
 
@@ -105,6 +116,11 @@ struct MarchReport {
 //   hexahedron_face / prism_face, hexahedron_layer / prism_layer
 //                     per cell: its front face and layer (0 = on the wall); a cell
 //                     is outermost when its layer + 1 == face_layers[face]
+//   pyramid_face, tetrahedron_face
+//                     per cell: the split face whose first cell it is part of, at a
+//                     junction of a wall fan across a sheet with the sheet's free edge
+//                     (the tip trailing edge); the prism between the two sheet lines
+//                     there is listed with that face and layer 0
 //   region_names      region tag of every cell = index of its patch here
 struct BoundaryLayer {
   MixedMesh mesh;
@@ -117,6 +133,7 @@ struct BoundaryLayer {
   std::vector<char> face_wall;
   std::vector<int> hexahedron_face, hexahedron_layer;
   std::vector<int> prism_face, prism_layer;
+  std::vector<int> pyramid_face, tetrahedron_face;
   std::vector<std::string> region_names;
   MarchReport report;
 };

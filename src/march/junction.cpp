@@ -1,0 +1,137 @@
+#include "junction.hpp"
+
+#include <algorithm>
+#include <array>
+
+#include "mixmesh/mesh/cell_geometry.hpp"
+
+namespace mixmesh::march_detail {
+
+namespace {
+
+// The face turned so that its right-hand normal points away from `inside`.
+std::vector<int> outward(std::vector<int> face, const std::vector<Vector3>& points, const Vector3& inside) {
+  Vector3 normal = Vector3::Zero(), centre = Vector3::Zero();
+  const std::size_t n = face.size();
+  for (std::size_t k = 0; k < n; ++k) {
+    const Vector3& here = points[static_cast<std::size_t>(face[k])];
+    normal += here.cross(points[static_cast<std::size_t>(face[(k + 1) % n])]);
+    centre += here / static_cast<double>(n);
+  }
+  if (normal.dot(centre - inside) < 0.0) std::reverse(face.begin(), face.end());
+  return face;
+}
+
+}  // namespace
+
+const Junction* junction_of(const Front& front, int face) {
+  for (const Junction& junction : front.junctions)
+    if (junction.face == face) return &junction;
+  return nullptr;
+}
+
+JunctionCells junction_cells(const Front& front, const Junction& junction, const std::vector<Vector3>& bottom,
+                             const std::vector<Vector3>& top) {
+  const FrontFace& face = front.faces[static_cast<std::size_t>(junction.face)];
+  auto column = [&](int k) { return static_cast<std::size_t>(face.columns[static_cast<std::size_t>(k)]); };
+  JunctionCells result;
+  std::vector<Vector3>& p = result.points;
+  p = {bottom[column(0)], bottom[column(1)], bottom[column(2)], top[column(0)],
+       top[column(1)],    top[column(2)],    top[column(3)],    Vector3::Zero()};
+  const auto sheet_after_column = static_cast<std::size_t>(junction.sheet[0]);
+  const auto sheet_before_column = static_cast<std::size_t>(junction.sheet[1]);
+  p.push_back(bottom[sheet_after_column]);
+  p.push_back(top[sheet_after_column]);
+  p.push_back(top[sheet_before_column]);
+
+  // The cut cell's faces, outward: four quads (pyramid bases) and two triangles. The
+  // pieces are cones from the centre over them, so a centre outside the cell gives an
+  // inverted piece (never turned round to hide it).
+  const std::vector<std::vector<int>> quads = {{wall_corner, wall_after, top_a, top_after},
+                                               {wall_after, wall_before, top_b, top_a},
+                                               {wall_before, wall_corner, top_before, top_b},
+                                               {top_after, top_a, top_b, top_before}};
+  const std::vector<std::vector<int>> triangles = {{wall_corner, wall_before, wall_after},
+                                                   {wall_corner, top_after, top_before}};
+  auto cut = [&](std::vector<JunctionCell>& cells) {
+    cells.clear();
+    // Pyramid face 0 is (0, 3, 2, 1) and tetrahedron face 0 is (0, 2, 1), outward.
+    for (const auto& quad : quads)
+      cells.push_back({CellType::pyramid, {quad[0], quad[3], quad[2], quad[1], centre}});
+    for (const auto& triangle : triangles)
+      cells.push_back({CellType::tetrahedron, {triangle[0], triangle[2], triangle[1], centre}});
+  };
+  // The centre: the point of the cell (barycentric in the wall triangle, a fraction of
+  // the way up) whose worst piece is best. The cell is a thin slab with its split
+  // corner at one end, so the best point is near that corner; the mean of the nodes
+  // gives needle tetrahedra there.
+  const Vector3 up = (p[top_after] + p[top_a] + p[top_b] + p[top_before]) / 4.0 -
+                     (p[wall_corner] + p[wall_after] + p[wall_before]) / 3.0;
+  auto place = [&](double u, double v, double w) {
+    p[centre] = p[wall_corner] + u * (p[wall_after] - p[wall_corner]) +
+                v * (p[wall_before] - p[wall_corner]) + w * up;
+  };
+  auto worst = [&](double u, double v, double w) {
+    place(u, v, w);
+    cut(result.cells);
+    double quality = 1.0;
+    for (const JunctionCell& cell : result.cells) {
+      std::vector<Index> indices(cell.nodes.begin(), cell.nodes.end());
+      const CellShape shape = cell_shape(cell.type, p, indices.data());
+      quality = std::min(quality, shape.valid() ? shape.min_corner_jacobian : -1.0);
+    }
+    return quality;
+  };
+  std::array<double, 3> best{1.0 / 3.0, 1.0 / 3.0, 0.5};
+  double best_quality = -2.0;
+  for (double u : {1e-4, 3e-4, 1e-3, 3e-3, 1e-2, 3e-2, 0.1, 0.2, 1.0 / 3.0})
+    for (double v : {1e-4, 3e-4, 1e-3, 3e-3, 1e-2, 3e-2, 0.1, 0.2, 1.0 / 3.0})
+      for (double w : {0.2, 0.35, 0.5, 0.65, 0.8}) {
+        const double quality = worst(u, v, w);
+        if (quality > best_quality) {
+          best_quality = quality;
+          best = {u, v, w};
+        }
+      }
+  // Compass refinement: relative steps in u and v, absolute in w.
+  for (double step = 0.5; step > 1e-3; step *= 0.5) {
+    bool improved = true;
+    while (improved) {
+      improved = false;
+      for (int axis = 0; axis < 3; ++axis)
+        for (double sign : {-1.0, 1.0}) {
+          std::array<double, 3> trial = best;
+          const auto a = static_cast<std::size_t>(axis);
+          trial[a] = axis < 2 ? trial[a] * (1.0 + sign * step) : trial[a] + sign * 0.25 * step;
+          if (trial[0] + trial[1] >= 1.0 || trial[2] <= 0.0 || trial[2] >= 1.0) continue;
+          const double quality = worst(trial[0], trial[1], trial[2]);
+          if (quality > best_quality) {
+            best_quality = quality;
+            best = trial;
+            improved = true;
+          }
+        }
+    }
+  }
+  place(best[0], best[1], best[2]);
+  cut(result.cells);
+  // The prism's triangle (0, 1, 2) is outward: (t, D, A), the cut cell's (t, A, D)
+  // turned round, so the prism lies on the other side of it.
+  result.cells.push_back(
+      {CellType::prism, {wall_corner, top_before, top_after, sheet_wall, sheet_before, sheet_after}});
+  const Vector3 inside =
+      (p[wall_corner] + p[top_after] + p[top_before] + p[sheet_wall] + p[sheet_after] + p[sheet_before]) /
+      6.0;
+  result.hull_faces.push_back(outward({sheet_wall, sheet_after, sheet_before}, p, inside));
+  result.hull_faces.push_back(outward({top_after, top_before, sheet_before, sheet_after}, p, inside));
+  return result;
+}
+
+bool junction_valid(const JunctionCells& cells) {
+  return std::all_of(cells.cells.begin(), cells.cells.end(), [&](const JunctionCell& cell) {
+    std::vector<Index> indices(cell.nodes.begin(), cell.nodes.end());
+    return cell_shape(cell.type, cells.points, indices.data()).valid();
+  });
+}
+
+}  // namespace mixmesh::march_detail
