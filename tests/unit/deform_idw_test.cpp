@@ -135,16 +135,25 @@ TEST(IdwRotationForm, FadesToZeroAtFixedBoundary) {
   EXPECT_LT(result.displacements[3].norm(), middle.norm());
 }
 
-TEST(IdwRotationForm, SameResultOnAnyThreadCountAndCloseToExactDistances) {
+// A body turned by `rotation` about `centre` inside a fixed spherical far field of
+// radius `radius`, and `volume_count` points within `cloud_radius`; seeds from `seed` on.
+IdwInput turning_body_in_far_field(const Eigen::Matrix3d& rotation, const Vector3& centre, int body_count,
+                                   int far_count, double radius, int volume_count, double cloud_radius,
+                                   unsigned seed) {
   IdwInput input;
-  const Eigen::Matrix3d rotation = Eigen::AngleAxisd(0.2, Vector3::UnitX()).toRotationMatrix();
-  input.bodies.push_back(rigid_body(ellipsoid_nodes(500, 20), rotation, Vector3::Zero(), Vector3::Zero()));
+  input.bodies.push_back(rigid_body(ellipsoid_nodes(body_count, seed), rotation, centre, Vector3::Zero()));
   IdwBody farfield;
   farfield.moving = false;
-  farfield.positions = ellipsoid_nodes(2000, 21);
-  for (Vector3& x : farfield.positions) x = 20.0 * x.normalized();
+  farfield.positions = ellipsoid_nodes(far_count, seed + 1);
+  for (Vector3& x : farfield.positions) x = radius * x.normalized();
   input.bodies.push_back(farfield);
-  input.volume_points = cloud(5000, 6.0, 22);
+  input.volume_points = cloud(volume_count, cloud_radius, seed + 2);
+  return input;
+}
+
+TEST(IdwRotationForm, SameResultOnAnyThreadCountAndCloseToExactDistances) {
+  const IdwInput input = turning_body_in_far_field(Eigen::AngleAxisd(0.2, Vector3::UnitX()).toRotationMatrix(),
+                                                   Vector3::Zero(), 500, 2000, 20.0, 5000, 6.0, 20);
   // The approximate distances to the other bodies (reused from the previous point of a
   // chunk) must not depend on the thread count either.
   IdwOptions approximate;
@@ -171,15 +180,8 @@ TEST(IdwRotationForm, SameResultOnAnyThreadCountAndCloseToExactDistances) {
 // give what a search from scratch gives (a volume point alone in its input), and the
 // same on any thread count.
 TEST(IdwRotationForm, SeededExactDistancesEqualASearchFromScratch) {
-  IdwInput input;
-  const Eigen::Matrix3d rotation = Eigen::AngleAxisd(0.3, Vector3::UnitY()).toRotationMatrix();
-  input.bodies.push_back(rigid_body(ellipsoid_nodes(400, 30), rotation, Vector3(0.1, 0.0, 0.0), Vector3::Zero()));
-  IdwBody farfield;
-  farfield.moving = false;
-  farfield.positions = ellipsoid_nodes(1500, 31);
-  for (Vector3& x : farfield.positions) x = 15.0 * x.normalized();
-  input.bodies.push_back(farfield);
-  input.volume_points = cloud(3000, 5.0, 32);
+  const IdwInput input = turning_body_in_far_field(Eigen::AngleAxisd(0.3, Vector3::UnitY()).toRotationMatrix(),
+                                                   Vector3(0.1, 0.0, 0.0), 400, 1500, 15.0, 3000, 5.0, 30);
   const IdwResult together = idw_deform(input);
   IdwResult serial;
   {
