@@ -24,6 +24,21 @@ std::vector<int> outward(std::vector<int> face, const std::vector<Vector3>& poin
 
 }  // namespace
 
+std::vector<int> junction_faces(const Front& front, const Junction& junction) {
+  const FrontFace& split = front.faces[static_cast<std::size_t>(junction.face)];
+  std::vector<int> faces{junction.face};
+  for (int end : {0, 1}) {
+    const int line = split.columns[end == 0 ? 0 : 3];
+    const int sheet = junction.sheet[static_cast<std::size_t>(end)];
+    for (int face : front.column_faces[static_cast<std::size_t>(line)]) {
+      const auto& columns = front.faces[static_cast<std::size_t>(face)].columns;
+      if (face != junction.face && std::find(columns.begin(), columns.end(), sheet) != columns.end())
+        faces.push_back(face);
+    }
+  }
+  return faces;
+}
+
 const Junction* junction_of(const Front& front, int face) {
   for (const Junction& junction : front.junctions)
     if (junction.face == face) return &junction;

@@ -47,6 +47,11 @@ JunctionCells junction_cells(const Front& front, const Junction& junction, const
 // True when every cell of junction_cells is valid (cell_shape).
 bool junction_valid(const JunctionCells& cells);
 
+// The faces whose first cells meet at the junction: the split face first, then the sheet
+// faces on the free edge from its node to the sheet columns (the prism between the two
+// sheet lines shares a face with each).
+std::vector<int> junction_faces(const Front& front, const Junction& junction);
+
 // The junction whose split face is `face`, or nullptr.
 const Junction* junction_of(const Front& front, int face);
 

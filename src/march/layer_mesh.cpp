@@ -69,11 +69,12 @@ void add_junction_cells(const Front& front, const Junction& junction, BoundaryLa
 
 // True for the side faces in layer 0 that the junction's cells replace: the split
 // face's collapsed edge and the sheet's free edges at its two lines.
-bool replaced_by_junction(const Front& front, const FreeEdge& edge) {
+bool replaced_by_junction(const Front& front, const BoundaryLayer& result, const FreeEdge& edge) {
   const FrontFace& f = front.faces[static_cast<std::size_t>(edge.face)];
   const int u = f.columns[static_cast<std::size_t>(edge.corner)];
   const int v = f.columns[static_cast<std::size_t>((edge.corner + 1) % f.corner_count)];
   for (const Junction& junction : front.junctions) {
+    if (result.face_layers[static_cast<std::size_t>(junction.face)] == 0) continue;  // no junction cells
     const FrontFace& split = front.faces[static_cast<std::size_t>(junction.face)];
     const std::array<std::array<int, 2>, 3> edges{{{split.columns[3], split.columns[0]},
                                                    {split.columns[0], junction.sheet[0]},
@@ -143,7 +144,7 @@ void add_boundary_faces(const Front& front, const MarchOptions& options, Boundar
     const bool symmetry =
         front.on_symmetry[static_cast<std::size_t>(u)] && front.on_symmetry[static_cast<std::size_t>(v)];
     const int marker = mesh.marker(symmetry ? options.symmetry_marker : options.hull_side_marker);
-    const bool junction = replaced_by_junction(front, edge);
+    const bool junction = replaced_by_junction(front, result, edge);
     for (int layer = junction ? 1 : 0; layer < result.face_layers[static_cast<std::size_t>(edge.face)];
          ++layer) {
       const auto nodes = side_face(front, result, edge.face, edge.corner, layer);

@@ -9,6 +9,7 @@
 #include <Eigen/Geometry>
 
 #include "front.hpp"
+#include "junction.hpp"
 #include "layer_checks.hpp"
 #include "layer_mesh.hpp"
 #include "layer_solver.hpp"
@@ -383,10 +384,28 @@ BoundaryLayer march_layers(const SurfaceMesh& surface, const MarchOptions& optio
         for (int face : front.column_faces[c])
           if (face_active[static_cast<std::size_t>(face)]) recheck.push_back(face);
       }
+      // A junction's first cells also use the sheet columns next to its split face.
+      if (layer == 0)
+        for (const march_detail::Junction& junction : front.junctions)
+          for (int sheet : junction.sheet)
+            if (touched[static_cast<std::size_t>(sheet)] && face_active[static_cast<std::size_t>(junction.face)])
+              recheck.push_back(junction.face);
       std::sort(recheck.begin(), recheck.end());
       recheck.erase(std::unique(recheck.begin(), recheck.end()), recheck.end());
       bad = failing(recheck);
     }
+    // A junction's first cells (junction.hpp) need the sheet lines next to the split face:
+    // where a sheet face there stops at the first layer, the split face stops with it. (A
+    // split face that stops alone leaves the sheet faces to close the free edge as usual.)
+    if (layer == 0 && !bad.empty())
+      for (const march_detail::Junction& junction : front.junctions) {
+        const std::vector<int> group = march_detail::junction_faces(front, junction);
+        const bool sheet_stops = std::any_of(group.begin() + 1, group.end(), [&](int face) {
+          return std::find(bad.begin(), bad.end(), face) != bad.end();
+        });
+        if (sheet_stops && std::find(bad.begin(), bad.end(), junction.face) == bad.end())
+          bad.push_back(junction.face);
+      }
     for (int face : bad) {
       face_active[static_cast<std::size_t>(face)] = 0;
       const FrontFace& f = front.faces[static_cast<std::size_t>(face)];

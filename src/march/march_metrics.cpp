@@ -56,40 +56,28 @@ MarchMetrics measure_march(const BoundaryLayer& layer, const SurfaceMesh& surfac
     if (corner.norm() > 0.0)
       wall_normal[static_cast<std::size_t>(column)] += angle_between(out, in) * corner.normalized();
   };
-  std::vector<std::size_t> split_faces;
   for (std::size_t face = 0; face < layer.face_columns.size(); ++face) {
     if (!layer.face_wall[face]) continue;
     const bool on_patch =
         patch.empty() || layer.region_names[static_cast<std::size_t>(layer.face_patch[face])] == patch;
     const auto& columns = layer.face_columns[face];
     const int n = static_cast<int>(columns.size());
-    // A face whose corners 0 and 3 start at the same wall point is split at a junction
-    // (march_layers.hpp): that corner is added below, once the other faces are in.
+    // The wall faces' own corners. A face split at a junction (march_layers.hpp) is the
+    // wall triangle (t, a, b) with two lines from t: both lines get that triangle's real
+    // corner at t, so they are measured against the wall around them (the wing face on
+    // their side and the tip cap), not against the opening the march chooses for them.
     const bool split = n == 4 && point(columns[0], 0) == point(columns[3], 0);
-    if (split) split_faces.push_back(face);
     for (int k = 0; k < n; ++k) {
       const int column = columns[static_cast<std::size_t>(k)];
       if (on_patch) measured[static_cast<std::size_t>(column)] = 1;
-      if (split && (k == 0 || k == 3)) continue;
       const Vector3& here = point(column, 0);
+      if (split && (k == 0 || k == 3)) {
+        add_corner(column, point(columns[1], 0) - here, point(columns[2], 0) - here);
+        continue;
+      }
       add_corner(column, point(columns[static_cast<std::size_t>((k + 1) % n)], 0) - here,
                  point(columns[static_cast<std::size_t>((k + n - 1) % n)], 0) - here);
     }
-  }
-  // The split corner of each of the two lines is the corner of the quad its first cell
-  // has on top: its edge between the lines opens along the difference of their wall
-  // normals from the other faces, as the march takes it.
-  const std::vector<Vector3> provisional = wall_normal;
-  for (std::size_t face : split_faces) {
-    const auto& columns = layer.face_columns[face];
-    auto unit = [](const Vector3& v) {
-      return v.norm() > 0.0 ? Vector3(v.normalized()) : Vector3(Vector3::Zero());
-    };
-    const Vector3 opening = unit(provisional[static_cast<std::size_t>(columns[3])]) -
-                            unit(provisional[static_cast<std::size_t>(columns[0])]);
-    const Vector3& here = point(columns[0], 0);
-    add_corner(columns[0], point(columns[1], 0) - here, opening);
-    add_corner(columns[3], -opening, point(columns[2], 0) - here);
   }
   std::vector<double> deviations, turns;
   for (std::size_t column = 0; column < column_count; ++column) {
