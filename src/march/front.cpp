@@ -176,6 +176,9 @@ JunctionPlan plan_junction(const SurfaceMesh& surface, const std::vector<Surface
   const int side_end = side_beyond(next_of(order.back()));
   if (side_start == 0 || side_end != -side_start) return {};
   const Vector3& here = surface.points[static_cast<std::size_t>(node)];
+  // The split face is the one that straddles the sheet's plane (its edges at the node
+  // on either side of it); if none does (the fan lies on one side to rounding), the
+  // middle face of the fan.
   std::size_t split = order[count / 2];
   for (std::size_t i : order) {
     const double before = (surface.points[static_cast<std::size_t>(previous_of(i))] - here).dot(sheet_normal);

@@ -50,14 +50,14 @@ JunctionCells junction_cells(const Front& front, const Junction& junction, const
   const FrontFace& face = front.faces[static_cast<std::size_t>(junction.face)];
   auto column = [&](int k) { return static_cast<std::size_t>(face.columns[static_cast<std::size_t>(k)]); };
   JunctionCells result;
-  std::vector<Vector3>& p = result.points;
-  p = {bottom[column(0)], bottom[column(1)], bottom[column(2)], top[column(0)],
-       top[column(1)],    top[column(2)],    top[column(3)],    Vector3::Zero()};
+  std::vector<Vector3>& points = result.points;
+  points = {bottom[column(0)], bottom[column(1)], bottom[column(2)], top[column(0)],
+            top[column(1)],    top[column(2)],    top[column(3)],    Vector3::Zero()};
   const auto sheet_after_column = static_cast<std::size_t>(junction.sheet[0]);
   const auto sheet_before_column = static_cast<std::size_t>(junction.sheet[1]);
-  p.push_back(bottom[sheet_after_column]);
-  p.push_back(top[sheet_after_column]);
-  p.push_back(top[sheet_before_column]);
+  points.push_back(bottom[sheet_after_column]);
+  points.push_back(top[sheet_after_column]);
+  points.push_back(top[sheet_before_column]);
 
   // The cut cell's faces, outward: four quads (pyramid bases) and two triangles. The
   // pieces are cones from the centre over them, so a centre outside the cell gives an
@@ -80,11 +80,11 @@ JunctionCells junction_cells(const Front& front, const Junction& junction, const
   // the way up) whose worst piece is best. The cell is a thin slab with its split
   // corner at one end, so the best point is near that corner; the mean of the nodes
   // gives needle tetrahedra there.
-  const Vector3 up = (p[top_after] + p[top_a] + p[top_b] + p[top_before]) / 4.0 -
-                     (p[wall_corner] + p[wall_after] + p[wall_before]) / 3.0;
+  const Vector3 up = (points[top_after] + points[top_a] + points[top_b] + points[top_before]) / 4.0 -
+                     (points[wall_corner] + points[wall_after] + points[wall_before]) / 3.0;
   auto place = [&](double u, double v, double w) {
-    p[centre] = p[wall_corner] + u * (p[wall_after] - p[wall_corner]) +
-                v * (p[wall_before] - p[wall_corner]) + w * up;
+    points[centre] = points[wall_corner] + u * (points[wall_after] - points[wall_corner]) +
+                     v * (points[wall_before] - points[wall_corner]) + w * up;
   };
   auto worst = [&](double u, double v, double w) {
     place(u, v, w);
@@ -92,7 +92,7 @@ JunctionCells junction_cells(const Front& front, const Junction& junction, const
     double quality = 1.0;
     for (const JunctionCell& cell : result.cells) {
       std::vector<Index> indices(cell.nodes.begin(), cell.nodes.end());
-      const CellShape shape = cell_shape(cell.type, p, indices.data());
+      const CellShape shape = cell_shape(cell.type, points, indices.data());
       quality = std::min(quality, shape.valid() ? shape.min_corner_jacobian : -1.0);
     }
     return quality;
@@ -134,11 +134,11 @@ JunctionCells junction_cells(const Front& front, const Junction& junction, const
   // turned round, so the prism lies on the other side of it.
   result.cells.push_back(
       {CellType::prism, {wall_corner, top_before, top_after, sheet_wall, sheet_before, sheet_after}});
-  const Vector3 inside =
-      (p[wall_corner] + p[top_after] + p[top_before] + p[sheet_wall] + p[sheet_after] + p[sheet_before]) /
-      6.0;
-  result.hull_faces.push_back(outward({sheet_wall, sheet_after, sheet_before}, p, inside));
-  result.hull_faces.push_back(outward({top_after, top_before, sheet_before, sheet_after}, p, inside));
+  const Vector3 inside = (points[wall_corner] + points[top_after] + points[top_before] + points[sheet_wall] +
+                          points[sheet_after] + points[sheet_before]) /
+                         6.0;
+  result.hull_faces.push_back(outward({sheet_wall, sheet_after, sheet_before}, points, inside));
+  result.hull_faces.push_back(outward({top_after, top_before, sheet_before, sheet_after}, points, inside));
   return result;
 }
 

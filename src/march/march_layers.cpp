@@ -388,7 +388,8 @@ BoundaryLayer march_layers(const SurfaceMesh& surface, const MarchOptions& optio
       if (layer == 0)
         for (const march_detail::Junction& junction : front.junctions)
           for (int sheet : junction.sheet)
-            if (touched[static_cast<std::size_t>(sheet)] && face_active[static_cast<std::size_t>(junction.face)])
+            if (touched[static_cast<std::size_t>(sheet)] &&
+                face_active[static_cast<std::size_t>(junction.face)])
               recheck.push_back(junction.face);
       std::sort(recheck.begin(), recheck.end());
       recheck.erase(std::unique(recheck.begin(), recheck.end()), recheck.end());

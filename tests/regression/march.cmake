@@ -14,20 +14,20 @@ add_test(NAME march_onera_m6_small_without_wake
          COMMAND $<TARGET_FILE:mixmesh-cli> march ${PROJECT_SOURCE_DIR}/cases/onera_m6.toml ${march_small}
                  --set surface.wake.enabled=false -o ${march_output}/onera_m6_small_without_wake.vtu)
 set_tests_properties(march_onera_m6_small_without_wake PROPERTIES LABELS regression
-                     FAIL_REGULAR_EXPRESSION "faces stopped at layer")
+                     FAIL_REGULAR_EXPRESSION "faces stopped at layer" FIXTURES_SETUP march_small_without_wake)
 add_test(NAME march_onera_m6_small_without_wake_check
          COMMAND ${MIXMESH_PYTHON} ${MIXMESH_CHECK_MESH} ${march_output}/onera_m6_small_without_wake.vtu --no-foam)
 set_tests_properties(march_onera_m6_small_without_wake_check PROPERTIES LABELS regression
-                     DEPENDS march_onera_m6_small_without_wake)
+                     FIXTURES_REQUIRED march_small_without_wake)
 
 add_test(NAME march_onera_m6_small
          COMMAND $<TARGET_FILE:mixmesh-cli> march ${PROJECT_SOURCE_DIR}/cases/onera_m6.toml ${march_small}
                  --set surface.wake.length=2.0 -o ${march_output}/onera_m6_small_layers.vtu --compare)
 set_tests_properties(march_onera_m6_small PROPERTIES LABELS regression
-                     FAIL_REGULAR_EXPRESSION "faces stopped at layer")
+                     FAIL_REGULAR_EXPRESSION "faces stopped at layer" FIXTURES_SETUP march_small)
 add_test(NAME march_onera_m6_small_check
          COMMAND ${MIXMESH_PYTHON} ${MIXMESH_CHECK_MESH} ${march_output}/onera_m6_small_layers.vtu --no-foam)
-set_tests_properties(march_onera_m6_small_check PROPERTIES LABELS regression DEPENDS march_onera_m6_small)
+set_tests_properties(march_onera_m6_small_check PROPERTIES LABELS regression FIXTURES_REQUIRED march_small)
 
 add_test(NAME march_onera_m6_full
          COMMAND $<TARGET_FILE:mixmesh-cli> march ${PROJECT_SOURCE_DIR}/cases/onera_m6.toml

@@ -57,7 +57,8 @@ struct MarchOptions {
   int direction_smoothing_passes = 10;
   // Smoothed march: largest angle (degrees) between successive segments of a line; a
   // line the corrector and the smoothing would turn further is turned by this much, and
-  // the rest of the turn is left to the next layers. 0: no limit.
+  // the rest of the turn is left to the next layers (the projections into a sheet end or
+  // the symmetry plane and the retries of failing columns come after it). 0: no limit.
   double maximum_turn_degrees = 1.0;
   // Safety: halve the step of the nodes of a failed cell this many times before the
   // column stops.
