@@ -83,24 +83,24 @@ void run_deform(const DeformArguments& arguments) {
   deform::DeformOptions options;
   options.keep_invalid = arguments.keep_invalid;
   auto each_step = [&](int step, const deform::DeformResult& result) {
-        std::cout << "step " << step << ": before: " << format_summary(result.before) << '\n'
-                  << "step " << step << ": after:  " << format_summary(result.after) << '\n';
-        char change[160];
-        std::snprintf(change, sizeof change,
-                      "step %d: wall-line angle change: moving walls %.3f deg at (%.4g, %.4g, "
-                      "%.4g), fixed walls %.3f deg\n",
-                      step, result.max_wall_angle_change, result.max_wall_angle_change_location.x(),
-                      result.max_wall_angle_change_location.y(), result.max_wall_angle_change_location.z(),
-                      result.fixed_wall_angle_change);
-        std::cout << change;
-        const std::string slivers = histogram(result.after);
-        if (!slivers.empty()) std::cout << slivers << '\n';
-        if (!result.valid)
-          std::cout << "step " << step << ": INVALID: " << result.invalid_count
-                    << " inverted cells (kept: --keep-invalid)\n";
-        results.push_back(result.mesh.points);
-        valid.push_back(result.valid);
-      };
+    std::cout << "step " << step << ": before: " << format_summary(result.before) << '\n'
+              << "step " << step << ": after:  " << format_summary(result.after) << '\n';
+    char change[160];
+    std::snprintf(change, sizeof change,
+                  "step %d: wall-line angle change: moving walls %.3f deg at (%.4g, %.4g, "
+                  "%.4g), fixed walls %.3f deg\n",
+                  step, result.max_wall_angle_change, result.max_wall_angle_change_location.x(),
+                  result.max_wall_angle_change_location.y(), result.max_wall_angle_change_location.z(),
+                  result.fixed_wall_angle_change);
+    std::cout << change;
+    const std::string slivers = histogram(result.after);
+    if (!slivers.empty()) std::cout << slivers << '\n';
+    if (!result.valid)
+      std::cout << "step " << step << ": INVALID: " << result.invalid_count
+                << " inverted cells (kept: --keep-invalid)\n";
+    results.push_back(result.mesh.points);
+    valid.push_back(result.valid);
+  };
   options.invalid_advice = "--keep-invalid writes it anyway";
   deform::deform_sequence(mesh, setup.motion, *setup.method, log, options, each_step);
   MixedMesh written = mesh;

@@ -56,7 +56,8 @@ void add_generate_command(CLI::App& application) {
     // [[deform]] step leaves no files.
     const std::vector<DeformedMesh> deformed = run_deform_steps(result, options, log);
     for (const auto& path : write_outputs(result, options.output)) log.info("wrote " + path.string());
-    for (const auto& path : write_deformed(result, deformed, options.output)) log.info("wrote " + path.string());
+    for (const auto& path : write_deformed(result, deformed, options.output))
+      log.info("wrote " + path.string());
     if (!arguments->report.empty()) write_report(arguments->report, result.report);
     std::cout << table_row(result.report) << '\n';
   });

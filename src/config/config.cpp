@@ -111,8 +111,9 @@ const void* Section::find_scalar(std::string_view key) {
   // `--set` names a key by its dotted path, which does not say which entry of an array
   // of tables it means.
   if (in_array_)
-    fail(key, "'" + qualified(path_, key) +
-                  "' is inside an array of tables ([[...]]): a batch sweep (a list of values) cannot vary it");
+    fail(key,
+         "'" + qualified(path_, key) +
+             "' is inside an array of tables ([[...]]): a batch sweep (a list of values) cannot vary it");
   Sweep sweep{qualified(path_, key), {}};
   for (const toml::node& value : values) {
     // Floating-point values in their shortest round-trip form (0.3, not 0.2999…),

@@ -92,7 +92,6 @@ void pseudo_laplacian_weights(const Vector3& node, const Index* cells, std::size
 
 }  // namespace
 
-
 namespace {
 
 std::shared_ptr<detail::AraGeometry> prepare_geometry(const MixedMesh& mesh,
@@ -163,8 +162,8 @@ std::vector<Vector3> AraMethod::move(const MixedMesh& mesh, const BoundaryMotion
       geometry_ = detail::read_ara_geometry(options_.cache_file, connectivity, point_bits,
                                             boundary.marker_roles, why_not);
       report_.geometry_from_file = geometry_ != nullptr;
-      log.detail("ara: geometry " + (geometry_ ? "read from " + options_.cache_file.string()
-                                               : "rebuilt (" + why_not + ")"));
+      log.detail("ara: geometry " +
+                 (geometry_ ? "read from " + options_.cache_file.string() : "rebuilt (" + why_not + ")"));
     }
     if (!geometry_) geometry_ = prepare_geometry(mesh, boundary.marker_roles, connectivity, point_bits);
   }
@@ -407,9 +406,10 @@ std::vector<Vector3> AraMethod::move(const MixedMesh& mesh, const BoundaryMotion
           << report_.smoothing_seconds << " s, inverted after interpolation "
           << report_.inverted_after_interpolation << ", after " << report_.repair_passes << " repair passes "
           << inverted << "; setup "
-          << (report_.geometry_cached ? "(cached) " : report_.geometry_from_file ? "(from the cache file) " : "")
-          << report_.setup_seconds
-          << " s, total " << report_.total_seconds << " s";
+          << (report_.geometry_cached      ? "(cached) "
+              : report_.geometry_from_file ? "(from the cache file) "
+                                           : "")
+          << report_.setup_seconds << " s, total " << report_.total_seconds << " s";
   log.detail(summary.str());
   return result;
 }

@@ -73,7 +73,8 @@ class BlockReader {
   }
   std::uint64_t checksum() const { return checksum_; }
   [[noreturn]] void damaged(const std::string& what) const {
-    throw Error(file_.string() + ": the geometry in the ARA cache is damaged (" + what + "); delete the file");
+    throw Error(file_.string() + ": the geometry in the ARA cache is damaged (" + what +
+                "); delete the file");
   }
 
  private:
@@ -126,6 +127,8 @@ void transfer(Block& block, Geometry& geometry) {
 bool consistent(const AraGeometry& geometry) {
   const DualMesh& dual = geometry.dual;
   const std::size_t cells = dual.cell_kind.size();
+  if (dual.cell_offsets.empty() || dual.point_cell_offsets.empty() || geometry.stencil.offsets.empty())
+    return false;
   return dual.cell_offsets.size() == cells + 1 && dual.index_in_block.size() == cells &&
          dual.interior_area.size() == dual.interior_cells.size() &&
          dual.face_offsets.size() == dual.face_marker.size() + 1 &&
@@ -135,7 +138,7 @@ bool consistent(const AraGeometry& geometry) {
          geometry.wall_centres.size() == geometry.walls.faces.size() &&
          geometry.stencil.offsets.size() == cells + 1 && geometry.stencil.diagonal.size() == cells &&
          geometry.stencil.wall_offsets.size() == cells + 1 &&
-         geometry.node_weights.size() == dual.point_cells.size() && !dual.cell_offsets.empty() &&
+         geometry.node_weights.size() == dual.point_cells.size() &&
          dual.cell_offsets.back() == dual.cell_nodes.size() &&
          dual.point_cell_offsets.back() == dual.point_cells.size() &&
          geometry.stencil.offsets.back() == geometry.stencil.neighbour.size();
@@ -143,7 +146,8 @@ bool consistent(const AraGeometry& geometry) {
 
 }  // namespace
 
-void write_ara_cache(const NearestFaces& nearest, const AraGeometry& geometry, const std::filesystem::path& file) {
+void write_ara_cache(const NearestFaces& nearest, const AraGeometry& geometry,
+                     const std::filesystem::path& file) {
   write_atomically(file, [&](const std::filesystem::path& temporary) {
     std::ofstream stream(temporary, std::ios::binary);
     if (!stream) throw Error(temporary.string() + ": cannot open for writing");
@@ -165,7 +169,8 @@ void write_ara_cache(const NearestFaces& nearest, const AraGeometry& geometry, c
 }
 
 std::shared_ptr<AraGeometry> read_ara_geometry(const std::filesystem::path& file, std::uint64_t connectivity,
-                                               std::uint64_t points, const std::vector<MarkerRole>& marker_roles,
+                                               std::uint64_t points,
+                                               const std::vector<MarkerRole>& marker_roles,
                                                std::string& why_not) {
   std::ifstream stream(file, std::ios::binary);
   if (!stream) throw Error(file.string() + ": cannot open the ARA cache");

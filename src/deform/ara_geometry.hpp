@@ -40,14 +40,16 @@ void skip_nearest_part(std::istream& stream, const std::filesystem::path& file);
 
 // The cache file: the nearest faces (the layout read_nearest_faces reads), then this
 // geometry with its mesh's hashes and a checksum.
-void write_ara_cache(const NearestFaces& nearest, const AraGeometry& geometry, const std::filesystem::path& file);
+void write_ara_cache(const NearestFaces& nearest, const AraGeometry& geometry,
+                     const std::filesystem::path& file);
 
 // The geometry stored in `file` when it was made for a mesh with this connectivity,
 // these points (bit for bit) and these marker roles; null when the file holds none or
 // one of another mesh (the points moved, say), with the reason in `why_not`. Throws
 // mixmesh::Error for a damaged geometry block.
 std::shared_ptr<AraGeometry> read_ara_geometry(const std::filesystem::path& file, std::uint64_t connectivity,
-                                               std::uint64_t points, const std::vector<MarkerRole>& marker_roles,
+                                               std::uint64_t points,
+                                               const std::vector<MarkerRole>& marker_roles,
                                                std::string& why_not);
 
 }  // namespace mixmesh::deform::detail

@@ -62,8 +62,9 @@ void detail::write_nearest_part(std::ostream& stream, const NearestFaces& neares
                                    nearest.mesh_hash};
   stream.write(cache_magic, sizeof cache_magic);
   stream.write(reinterpret_cast<const char*>(counts), sizeof counts);
-  stream.write(reinterpret_cast<const char*>(nearest.faces.data()),
-               static_cast<std::streamsize>(nearest.faces.size() * sizeof(nearest.faces[0])));
+  if (!nearest.faces.empty())
+    stream.write(reinterpret_cast<const char*>(nearest.faces.data()),
+                 static_cast<std::streamsize>(nearest.faces.size() * sizeof(nearest.faces[0])));
 }
 
 void write_nearest_faces(const NearestFaces& nearest, const std::filesystem::path& file) {

@@ -49,7 +49,8 @@ DeformResult deform_step(const MixedMesh& mesh, const MixedMesh& reference, cons
                              result.invalid_examples.size() < result.invalid_count;
        ++cell) {
     if (detail::cell_valid(dual, cell, result.mesh.points)) continue;
-    result.invalid_examples.push_back({detail::cell_kind_name(dual.cell_kind[cell]), dual.index_in_block[cell],
+    result.invalid_examples.push_back({detail::cell_kind_name(dual.cell_kind[cell]),
+                                       dual.index_in_block[cell],
                                        detail::cell_centre(dual, cell, result.mesh.points)});
   }
   const ValidityReport validity = validate(result.mesh);

@@ -130,7 +130,8 @@ std::vector<double> wall_angles(const MixedMesh& mesh, const WallLines& lines) {
   return angles;
 }
 
-QualitySummary detail::summarise_quality(const MixedMesh& mesh, const DualMesh& dual, const WallLines& lines) {
+QualitySummary detail::summarise_quality(const MixedMesh& mesh, const DualMesh& dual,
+                                         const WallLines& lines) {
   QualitySummary summary;
   struct Partial {
     double min_jacobian = std::numeric_limits<double>::infinity();

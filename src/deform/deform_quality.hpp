@@ -7,7 +7,8 @@
 
 namespace mixmesh::deform::detail {
 
-WallLines wall_lines(const MixedMesh& mesh, const DualMesh& dual, const std::vector<MarkerRole>& marker_roles);
+WallLines wall_lines(const MixedMesh& mesh, const DualMesh& dual,
+                     const std::vector<MarkerRole>& marker_roles);
 
 // `dual` and `lines` may come from another mesh with the same cells (the undeformed one).
 QualitySummary summarise_quality(const MixedMesh& mesh, const DualMesh& dual, const WallLines& lines);

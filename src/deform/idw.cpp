@@ -38,15 +38,18 @@ struct PointCloud {
 using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, PointCloud>,
                                                    PointCloud, 3, Index>;
 
-// Distance from a point to the nearest node of a tree, to within a relative accuracy.
-// Consecutive volume points are usually close, so the previous answer often settles the
-// next: with previous point p, distance d_p and nearest node n, the distance at x lies in
-// [d_p − |x − p|, |x − n|]. A far field all around the body is the case this saves: every
-// far-field node is at about the same distance and a tree search visits nearly all.
 // Leaf size of the rotation form's k-d trees (references and distances to the other
-// bodies): on 1 M points around 53 000 boundary nodes, 32 took 7.5 CPU-s, 10 took 9.0.
+// bodies): on 1 M points around 53 000 boundary nodes, 32 took 7.5 CPU-s, 10 took 9.0
+// (both under load; 7.1 CPU-s idle with 32).
 constexpr std::size_t reference_leaf_size = 32;
 
+// Distance from a point to the nearest node of a tree: exact by default, or to within a
+// relative accuracy. Consecutive volume points are usually close, so the previous answer
+// helps the next: with previous point p, distance d_p and nearest node n, the distance at
+// x lies in [d_p − |x − p|, |x − n|]. The exact search starts with n as the best so far;
+// with an accuracy the bounds alone may settle it. A far field all around the body is the
+// case this saves: every far-field node is at about the same distance and a tree search
+// visits nearly all.
 struct NearestDistance {
   double accuracy = 0.0;
   bool known = false;
@@ -349,7 +352,8 @@ void deform_rotation(const IdwInput& input, const IdwOptions& options, IdwResult
   for (std::size_t b = 0; b < input.bodies.size(); ++b) {
     if (input.bodies[b].positions.empty()) continue;
     clouds[b].points = &input.bodies[b].positions;
-    trees[b] = std::make_unique<KdTree>(3, clouds[b], nanoflann::KDTreeSingleIndexAdaptorParams(reference_leaf_size));
+    trees[b] = std::make_unique<KdTree>(3, clouds[b],
+                                        nanoflann::KDTreeSingleIndexAdaptorParams(reference_leaf_size));
     trees[b]->buildIndex();
   }
   const FitDimension dimension = fit_dimension(input.bodies);

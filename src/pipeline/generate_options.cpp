@@ -1,6 +1,8 @@
 // The tables of a generate config. Defaults live in the stage option structs; this
 // file only maps keys onto them.
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "mixmesh/pipeline/generate.hpp"
 #include "mixmesh/surface/surface_config.hpp"
@@ -149,11 +151,29 @@ GenerateOptions read_generate_options(config::Document& document) {
   options.farfield = read_farfield_options(farfield ? *farfield : no_table);
   auto output = root.optional_section("output");
   options.output = read_output_options(output ? *output : no_table, document.file());
+  // The files a step writes: NAME_STEP, or NAME_STEP_0001 … for a sequence.
+  auto stems = [](const deform::DeformStep& step) {
+    std::vector<std::string> names;
+    if (step.motion.steps == 1) return std::vector<std::string>{step.name};
+    for (int index = 1; index <= step.motion.steps; ++index) {
+      char suffix[32];
+      std::snprintf(suffix, sizeof suffix, "_%04d", index);
+      names.push_back(step.name + suffix);
+    }
+    return names;
+  };
   for (config::Section& step : root.sections("deform")) {
     options.deform.push_back(deform::read_deform_step(step));
-    for (std::size_t other = 0; other + 1 < options.deform.size(); ++other)
+    const std::vector<std::string> mine = stems(options.deform.back());
+    for (std::size_t other = 0; other + 1 < options.deform.size(); ++other) {
       if (options.deform[other].name == options.deform.back().name)
         step.fail("name", "two [[deform]] steps named '" + options.deform.back().name + "'");
+      for (const std::string& stem : stems(options.deform[other]))
+        if (std::find(mine.begin(), mine.end(), stem) != mine.end())
+          step.fail("name", "[[deform]] '" + options.deform.back().name + "' would write the files of '" +
+                                options.deform[other].name + "' (" + options.deform[other].where +
+                                "): " + stem);
+    }
   }
   root.finish();
   return options;

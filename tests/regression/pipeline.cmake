@@ -45,12 +45,12 @@ add_test(NAME pipeline_check_mesh_deformed
 set_tests_properties(pipeline_check_mesh_deformed PROPERTIES LABELS regression
                      FIXTURES_REQUIRED deformed_mesh PASS_REGULAR_EXPRESSION "\nVALID")
 
-# A [[deform]] step whose mesh stays inverted (IDW on the nearly flat trailing-edge cells
-# of this coarse wing) fails naming the config line and the step, and writes no file at
-# all, not even the generated mesh or the steps before it.
+# A [[deform]] step whose mesh stays inverted (the wing moved through the far field)
+# fails naming the config line and the step, and writes no file at all, not even the
+# generated mesh or the steps before it.
 add_test(NAME pipeline_failed_deform_writes_nothing
          COMMAND ${CMAKE_COMMAND} -DPROGRAM=$<TARGET_FILE:mixmesh-cli>
-                 -DCONFIG=${CMAKE_CURRENT_LIST_DIR}/pipeline/wing_pitch_idw.toml
+                 -DCONFIG=${CMAKE_CURRENT_LIST_DIR}/pipeline/wing_through_farfield.toml
                  -DFOLDER=${pipeline_folder}/failed_deform -P ${CMAKE_CURRENT_LIST_DIR}/pipeline/expect_no_files.cmake)
 set_tests_properties(pipeline_failed_deform_writes_nothing PROPERTIES LABELS regression
-                     PASS_REGULAR_EXPRESSION "wing_pitch_idw.toml:[0-9]+:[0-9]+: \\[\\[deform\\]\\] 'idw': step 1: [0-9]+ cells stay inverted")
+                     PASS_REGULAR_EXPRESSION "wing_through_farfield.toml:[0-9]+:[0-9]+: \\[\\[deform\\]\\] 'through': step 1: [0-9]+ cells stay inverted")

@@ -152,8 +152,9 @@ IdwInput turning_body_in_far_field(const Eigen::Matrix3d& rotation, const Vector
 }
 
 TEST(IdwRotationForm, SameResultOnAnyThreadCountAndCloseToExactDistances) {
-  const IdwInput input = turning_body_in_far_field(Eigen::AngleAxisd(0.2, Vector3::UnitX()).toRotationMatrix(),
-                                                   Vector3::Zero(), 500, 2000, 20.0, 5000, 6.0, 20);
+  const IdwInput input =
+      turning_body_in_far_field(Eigen::AngleAxisd(0.2, Vector3::UnitX()).toRotationMatrix(), Vector3::Zero(),
+                                500, 2000, 20.0, 5000, 6.0, 20);
   // The approximate distances to the other bodies (reused from the previous point of a
   // chunk) must not depend on the thread count either.
   IdwOptions approximate;
@@ -180,8 +181,9 @@ TEST(IdwRotationForm, SameResultOnAnyThreadCountAndCloseToExactDistances) {
 // give what a search from scratch gives (a volume point alone in its input), and the
 // same on any thread count.
 TEST(IdwRotationForm, SeededExactDistancesEqualASearchFromScratch) {
-  const IdwInput input = turning_body_in_far_field(Eigen::AngleAxisd(0.3, Vector3::UnitY()).toRotationMatrix(),
-                                                   Vector3(0.1, 0.0, 0.0), 400, 1500, 15.0, 3000, 5.0, 30);
+  const IdwInput input =
+      turning_body_in_far_field(Eigen::AngleAxisd(0.3, Vector3::UnitY()).toRotationMatrix(),
+                                Vector3(0.1, 0.0, 0.0), 400, 1500, 15.0, 3000, 5.0, 30);
   const IdwResult together = idw_deform(input);
   IdwResult serial;
   {

@@ -122,7 +122,7 @@ TEST(DeformStep, ReadsAGenerationConfigStepAndMakesFreshMethods) {
 TEST(DeformStep, RejectsStepsWithoutANameOrWithUnknownKeys) {
   const std::string body = "[[deform.body]]\nmarkers = [\"wall\"]\n";
   EXPECT_THROW(parse_step("[[deform]]\n" + body), Error);                          // no name
-  EXPECT_THROW(parse_step("[[deform]]\nname = \"a/b\"\n" + body), Error);         // a slash
+  EXPECT_THROW(parse_step("[[deform]]\nname = \"a/b\"\n" + body), Error);          // a slash
   EXPECT_THROW(parse_step("[[deform]]\nname = \"a\"\nstep = 3\n" + body), Error);  // misspelt key
   try {
     parse_step("[[deform]]\nname = \"a\"\n" + body + "[deform.ara]\ntolerence = 1e-5\n");

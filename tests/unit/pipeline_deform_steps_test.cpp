@@ -28,7 +28,8 @@ std::string error_of(const std::string& text, bool sweeps = false) {
 }
 
 TEST(PipelineDeformSteps, ReadsStepsInOrder) {
-  config::Document document = config::Document::parse(wing + step("a") + step("b", "steps = 3\n"), "case.toml");
+  config::Document document =
+      config::Document::parse(wing + step("a") + step("b", "steps = 3\n"), "case.toml");
   const GenerateOptions options = read_generate_options(document);
   ASSERT_EQ(options.deform.size(), 2u);
   EXPECT_EQ(options.deform[0].name, "a");
@@ -42,6 +43,13 @@ TEST(PipelineDeformSteps, RefusesTwoStepsOfOneName) {
   EXPECT_NE(message.find("two [[deform]] steps named 'a'"), std::string::npos) << message;
 }
 
+TEST(PipelineDeformSteps, RefusesStepsThatWouldWriteOneFileTwice) {
+  // "a" with three steps writes a_0001 … a_0003, which a step named "a_0002" would overwrite.
+  const std::string message = error_of(wing + step("a", "steps = 3\n") + step("a_0002"));
+  EXPECT_NE(message.find("case.toml:13"), std::string::npos) << message;
+  EXPECT_NE(message.find("would write the files of 'a'"), std::string::npos) << message;
+}
+
 TEST(PipelineDeformSteps, RefusesANearestFaceCache) {
   const std::string message = error_of(wing + step("a") + "[deform.ara]\ncache = \"faces.bin\"\n");
   EXPECT_NE(message.find("case.toml:12"), std::string::npos) << message;
@@ -51,12 +59,16 @@ TEST(PipelineDeformSteps, RefusesANearestFaceCache) {
 TEST(PipelineDeformSteps, RefusesABatchSweepInsideAStep) {
   // A list of values is a sweep for `mixmesh batch`, which sets keys by their dotted
   // path; deform.body.angle does not say which step it means.
-  const std::string text = wing + "[[deform]]\nname = \"a\"\n[[deform.body]]\nmarkers = [\"wall\"]\nangle = [3.0, 5.0]\n";
+  const std::string text =
+      wing + "[[deform]]\nname = \"a\"\n[[deform.body]]\nmarkers = [\"wall\"]\nangle = [3.0, 5.0]\n";
   const std::string message = error_of(text, true);
   EXPECT_NE(message.find("case.toml:10"), std::string::npos) << message;
   EXPECT_NE(message.find("cannot vary it"), std::string::npos) << message;
   // A sweep outside the steps stays a sweep.
-  EXPECT_EQ(error_of("[wing]\nnaca = [\"0012\", \"0015\"]\nroot_chord = 1.0\nsemi_span = 2.0\ntaper = 0.6\n" + step("a"), true), "");
+  EXPECT_EQ(error_of("[wing]\nnaca = [\"0012\", \"0015\"]\nroot_chord = 1.0\nsemi_span = 2.0\ntaper = 0.6\n" +
+                         step("a"),
+                     true),
+            "");
 }
 
 }  // namespace

@@ -110,8 +110,8 @@ struct AraReport {
   double interpolation_seconds = 0.0;
   double repair_seconds = 0.0;
   double total_seconds = 0.0;
-  bool cache_used = false;       // nearest faces from the cache
-  bool geometry_cached = false;  // dual mesh, stencil and weights of the same undeformed mesh
+  bool cache_used = false;          // nearest faces from the cache
+  bool geometry_cached = false;     // dual mesh, stencil and weights of the same undeformed mesh
   bool geometry_from_file = false;  // the same, read from the cache file
   int spin_iterations = 0;
   int smoothing_iterations = 0;

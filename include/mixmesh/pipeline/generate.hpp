@@ -93,7 +93,8 @@ GenerateResult generate_from_surface(const SurfaceMesh& surface, const GenerateO
 std::vector<std::filesystem::path> write_outputs(const GenerateResult& result, const OutputOptions& options);
 
 // Mesh-then-deform: every [[deform]] step of `options` run on the generated (valid)
-// mesh, each mesh checked; nothing is written. Throws mixmesh::Error naming the step
+// mesh, each mesh checked; nothing is written (the points of every deformed mesh are
+// kept in memory until then: 24 bytes per point and mesh). Throws mixmesh::Error naming the step
 // (config file:line and name) when a step fails.
 struct DeformedMesh {
   std::string stem;  // NAME_STEPNAME, or NAME_STEPNAME_0003 for step 3 of a sequence
