@@ -159,7 +159,7 @@ TEST(MarchLayers, RejectsBadSurfaces) {
 
 TEST(MarchLayers, TurnLimitBoundsTheTurnOfEveryLine) {
   // Lines round a cylinder patch bend as the layers grow as thick as its cells are
-  // wide; with the limit no segment turns by more than it (no step was retried here).
+  // wide; with the limit no segment turns by more than it (no step was halved here).
   const SurfaceMesh cylinder = march_surfaces::cylinder_patch(17, 9);
   MarchOptions options = plate_options(24, 0.002, 1.3);
   options.maximum_turn_degrees = 0.0;
