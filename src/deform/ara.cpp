@@ -157,7 +157,8 @@ std::vector<Vector3> AraMethod::move(const MixedMesh& mesh, const BoundaryMotion
                             geometry_->marker_roles == boundary.marker_roles;
   if (!report_.geometry_cached) {
     geometry_.reset();  // release the old one before building the new one
-    if (!options_.cache_file.empty() && std::filesystem::exists(options_.cache_file)) {
+    if (options_.cache_geometry && !options_.cache_file.empty() &&
+        std::filesystem::exists(options_.cache_file)) {
       std::string why_not;
       geometry_ = detail::read_ara_geometry(options_.cache_file, connectivity, point_bits,
                                             boundary.marker_roles, why_not);
@@ -204,7 +205,12 @@ std::vector<Vector3> AraMethod::move(const MixedMesh& mesh, const BoundaryMotion
     nearest_ = detail::find_nearest_faces(dual, walls, centres, points, options_.candidates);
     nearest_.point_count = points.size();
     nearest_.mesh_hash = geometry.nearest_key;
-    if (!options_.cache_file.empty()) detail::write_ara_cache(nearest_, geometry, options_.cache_file);
+    if (!options_.cache_file.empty()) {
+      if (options_.cache_geometry)
+        detail::write_ara_cache(nearest_, geometry, options_.cache_file);
+      else
+        write_nearest_faces(nearest_, options_.cache_file);
+    }
   }
   std::vector<double> first_distance;
   std::vector<double> second_distance;

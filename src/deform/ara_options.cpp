@@ -43,6 +43,7 @@ AraOptions read_ara_options(config::Section& section) {
   section.read("max_iterations", options.max_iterations, config::Bounds::non_negative());
   section.read("repair_passes", options.repair_passes, config::Bounds::between(0, 100));
   section.read_path("cache", options.cache_file);
+  section.read("cache_geometry", options.cache_geometry);
   section.finish();
   return options;
 }

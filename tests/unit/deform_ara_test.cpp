@@ -170,6 +170,21 @@ TEST(DeformAra, CacheFileKeepsTheGeometryOfTheSamePointsOnly) {
   EXPECT_TRUE(reader.last_report().geometry_from_file);
   EXPECT_TRUE(reader.last_report().cache_used);
 
+  // Without the geometry: a file of nearest faces only, much smaller, the same mesh.
+  const auto small_file = std::filesystem::temp_directory_path() / "mixmesh_deform_faces_only.bin";
+  std::filesystem::remove(small_file);
+  AraOptions faces_only = options;
+  faces_only.cache_file = small_file;
+  faces_only.cache_geometry = false;
+  AraMethod small_writer(faces_only);
+  small_writer.move(mesh, boundary, quiet);
+  EXPECT_LT(std::filesystem::file_size(small_file) * 10, std::filesystem::file_size(file));
+  AraMethod small_reader(faces_only);
+  EXPECT_EQ(small_reader.move(mesh, boundary, quiet), first);
+  EXPECT_TRUE(small_reader.last_report().cache_used);
+  EXPECT_FALSE(small_reader.last_report().geometry_from_file);
+  std::filesystem::remove(small_file);
+
   // Moved points: the nearest faces still serve, the geometry is rebuilt.
   MixedMesh moved = mesh;
   for (Vector3& point : moved.points) point *= 1.001;
