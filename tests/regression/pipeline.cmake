@@ -54,3 +54,19 @@ add_test(NAME pipeline_failed_deform_writes_nothing
                  -DFOLDER=${pipeline_folder}/failed_deform -P ${CMAKE_CURRENT_LIST_DIR}/pipeline/expect_no_files.cmake)
 set_tests_properties(pipeline_failed_deform_writes_nothing PROPERTIES LABELS regression
                      PASS_REGULAR_EXPRESSION "wing_through_farfield.toml:[0-9]+:[0-9]+: \\[\\[deform\\]\\] 'through': step 1: [0-9]+ cells stay inverted")
+
+# The same on the ONERA M6 case without its wake (cases/pipeline/onera_m6_pitch.toml):
+# the mixed mesh and a four-step 3-degree pitch with ARA, the last mesh checked by
+# meshio, VTK and checkMesh. About 10 s for the mesh and 10 s for the check: heavy.
+add_test(NAME pipeline_onera_m6_generate_then_deform
+         COMMAND mixmesh-cli generate ${PROJECT_SOURCE_DIR}/cases/pipeline/onera_m6_pitch.toml
+                 --output-dir ${pipeline_folder}/onera_m6_pitch)
+set_tests_properties(pipeline_onera_m6_generate_then_deform PROPERTIES LABELS "regression;heavy"
+                     FIXTURES_SETUP onera_m6_pitched
+                     PASS_REGULAR_EXPRESSION "wrote [^\n]*onera_m6_pitch_pitch_0004.vtu"
+                     FAIL_REGULAR_EXPRESSION "mixmesh: error|INVALID")
+add_test(NAME pipeline_check_mesh_onera_m6_pitched
+         COMMAND ${MIXMESH_PYTHON} ${MIXMESH_CHECK_MESH}
+                 ${pipeline_folder}/onera_m6_pitch/onera_m6_pitch_pitch_0004.vtu -q)
+set_tests_properties(pipeline_check_mesh_onera_m6_pitched PROPERTIES LABELS "regression;heavy"
+                     FIXTURES_REQUIRED onera_m6_pitched PASS_REGULAR_EXPRESSION "\nVALID")
