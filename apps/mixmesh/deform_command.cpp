@@ -46,12 +46,7 @@ std::string histogram(const deform::QualitySummary& summary) {
 // OUT for one step; OUT's stem + "_0003" + extension for step 3 of a sequence; the
 // word "invalid" before the extension for meshes written with --keep-invalid.
 std::filesystem::path step_path(const std::filesystem::path& output, int step, int steps, bool valid) {
-  std::string stem = output.stem().string();
-  if (steps > 1) {
-    char suffix[16];
-    std::snprintf(suffix, sizeof suffix, "_%04d", step);
-    stem += suffix;
-  }
+  std::string stem = deform::step_stem(output.stem().string(), step, steps);
   if (!valid) stem += ".invalid";
   return output.parent_path() / (stem + output.extension().string());
 }

@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <memory>
 #include <sstream>
 
 #include "deform/deform_quality.hpp"
@@ -13,9 +15,31 @@
 
 namespace mixmesh::deform {
 
-DeformResult deform_step(const MixedMesh& mesh, const MixedMesh& reference, const Motion& motion, int step,
-                         DeformationMethod& method, const Log& log, const DeformOptions& options) {
-  (void)options;
+namespace {
+
+// What a step measures on the mesh it starts from: the same for every step of a sequence
+// that deforms one mesh, so deform_sequence measures it once.
+struct StartMesh {
+  detail::DualMesh dual;  // cells as nodes; the same for the deformed mesh
+  WallLines lines;        // grid lines chosen on this mesh, kept for the deformed one
+  std::vector<double> angles;
+  QualitySummary quality;
+};
+
+std::shared_ptr<const StartMesh> measure_start(const MixedMesh& mesh, const std::vector<MarkerRole>& roles) {
+  auto start = std::make_shared<StartMesh>();
+  start->dual = detail::build_dual_mesh(mesh);
+  start->lines = detail::wall_lines(mesh, start->dual, roles);
+  start->angles = wall_angles(mesh, start->lines);
+  start->quality = detail::summarise_quality(mesh, start->dual, start->angles);
+  return start;
+}
+
+// deform_step, with the measures of `mesh` from an earlier step when `measured` holds them
+// (it is filled otherwise).
+DeformResult step_from(const MixedMesh& mesh, const MixedMesh& reference, const Motion& motion, int step,
+                       DeformationMethod& method, const Log& log,
+                       std::shared_ptr<const StartMesh>& measured) {
   Stopwatch clock;
   const BoundaryMotion boundary = boundary_motion(mesh, reference, motion, step);
   std::vector<Vector3> points = method.move(mesh, boundary, log);
@@ -40,10 +64,12 @@ DeformResult deform_step(const MixedMesh& mesh, const MixedMesh& reference, cons
 
   // One dual mesh and one set of wall lines (chosen on the undeformed mesh) serve the
   // figures before and after: the cells are the same, only the points moved.
-  const detail::DualMesh dual = detail::build_dual_mesh(mesh);
-  const WallLines lines = detail::wall_lines(mesh, dual, boundary.marker_roles);
-  result.before = detail::summarise_quality(mesh, dual, lines);
-  result.after = detail::summarise_quality(result.mesh, dual, lines);
+  if (!measured) measured = measure_start(mesh, boundary.marker_roles);
+  const detail::DualMesh& dual = measured->dual;
+  const WallLines& lines = measured->lines;
+  const std::vector<double> after = wall_angles(result.mesh, lines);
+  result.before = measured->quality;
+  result.after = detail::summarise_quality(result.mesh, dual, after);
   result.invalid_count = result.after.invalid_cells;
   for (std::size_t cell = 0; cell < dual.cell_count() && result.invalid_examples.size() < 5 &&
                              result.invalid_examples.size() < result.invalid_count;
@@ -57,8 +83,7 @@ DeformResult deform_step(const MixedMesh& mesh, const MixedMesh& reference, cons
   result.valid = result.invalid_count == 0 && validity.valid();
   if (result.invalid_count == 0 && !validity.valid()) log.warning("deformed mesh: " + validity.summary());
 
-  const std::vector<double> before = wall_angles(mesh, lines);
-  const std::vector<double> after = wall_angles(result.mesh, lines);
+  const std::vector<double>& before = measured->angles;
   for (std::size_t entry = 0; entry < before.size(); ++entry) {
     const double change = std::abs(after[entry] - before[entry]);
     if (!std::isfinite(change)) continue;
@@ -81,15 +106,33 @@ DeformResult deform_step(const MixedMesh& mesh, const MixedMesh& reference, cons
   return result;
 }
 
+}  // namespace
+
+DeformResult deform_step(const MixedMesh& mesh, const MixedMesh& reference, const Motion& motion, int step,
+                         DeformationMethod& method, const Log& log, const DeformOptions& options) {
+  (void)options;
+  std::shared_ptr<const StartMesh> measured;
+  return step_from(mesh, reference, motion, step, method, log, measured);
+}
+
+std::string step_stem(const std::string& stem, int step, int steps) {
+  if (steps <= 1) return stem;
+  char suffix[32];
+  std::snprintf(suffix, sizeof suffix, "_%04d", step);
+  return stem + suffix;
+}
+
 void deform_sequence(const MixedMesh& mesh, const Motion& motion, DeformationMethod& method, const Log& log,
                      const DeformOptions& options,
                      const std::function<void(int step, const DeformResult& result)>& each_step) {
   const ValidityReport input = validate(mesh);
   if (!input.valid()) throw Error("the mesh to deform is itself invalid: " + input.summary());
   MixedMesh previous;
+  std::shared_ptr<const StartMesh> measured;  // of the mesh the steps start from
   for (int step = 1; step <= motion.steps; ++step) {
     const MixedMesh& start = motion.incremental && step > 1 ? previous : mesh;
-    DeformResult result = deform_step(start, mesh, motion, step, method, log, options);
+    if (motion.incremental) measured.reset();  // each step starts from the last one's mesh
+    DeformResult result = step_from(start, mesh, motion, step, method, log, measured);
     if (!result.valid && !options.keep_invalid) {
       std::ostringstream message;
       message << "step " << step << ": " << result.invalid_count << " cells stay inverted after repair";

@@ -40,7 +40,8 @@ WallLines wall_lines(const MixedMesh& mesh, const std::vector<MarkerRole>& marke
 
 QualitySummary summarise_quality(const MixedMesh& mesh, const std::vector<MarkerRole>& marker_roles) {
   const detail::DualMesh dual = detail::build_dual_mesh(mesh);
-  return detail::summarise_quality(mesh, dual, detail::wall_lines(mesh, dual, marker_roles));
+  return detail::summarise_quality(mesh, dual,
+                                   wall_angles(mesh, detail::wall_lines(mesh, dual, marker_roles)));
 }
 
 WallLines detail::wall_lines(const MixedMesh& mesh, const DualMesh& dual,
@@ -131,7 +132,7 @@ std::vector<double> wall_angles(const MixedMesh& mesh, const WallLines& lines) {
 }
 
 QualitySummary detail::summarise_quality(const MixedMesh& mesh, const DualMesh& dual,
-                                         const WallLines& lines) {
+                                         const std::vector<double>& angles) {
   QualitySummary summary;
   struct Partial {
     double min_jacobian = std::numeric_limits<double>::infinity();
@@ -168,7 +169,6 @@ QualitySummary detail::summarise_quality(const MixedMesh& mesh, const DualMesh& 
   summary.min_scaled_jacobian = total.min_jacobian;
   summary.invalid_cells = total.invalid;
   summary.sliver_histogram = total.slivers;
-  const std::vector<double> angles = wall_angles(mesh, lines);
   double sum = 0.0;
   std::size_t count = 0;
   for (double angle : angles) {

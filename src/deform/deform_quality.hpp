@@ -10,7 +10,9 @@ namespace mixmesh::deform::detail {
 WallLines wall_lines(const MixedMesh& mesh, const DualMesh& dual,
                      const std::vector<MarkerRole>& marker_roles);
 
-// `dual` and `lines` may come from another mesh with the same cells (the undeformed one).
-QualitySummary summarise_quality(const MixedMesh& mesh, const DualMesh& dual, const WallLines& lines);
+// `dual` may come from another mesh with the same cells (the undeformed one); `angles`
+// are wall_angles(mesh, lines) of this mesh.
+QualitySummary summarise_quality(const MixedMesh& mesh, const DualMesh& dual,
+                                 const std::vector<double>& angles);
 
 }  // namespace mixmesh::deform::detail

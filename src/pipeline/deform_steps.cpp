@@ -1,6 +1,5 @@
 // Mesh-then-deform: the [[deform]] steps of a generation config on the generated mesh.
 #include <algorithm>
-#include <cstdio>
 #include <sstream>
 
 #include "mixmesh/core/error.hpp"
@@ -22,12 +21,7 @@ std::vector<DeformedMesh> run_deform_steps(const GenerateResult& result, const G
       deform::deform_sequence(
           result.mesh, step.motion, *method, log, {}, [&](int index, const deform::DeformResult& deformed) {
             DeformedMesh mesh;
-            mesh.stem = stem;
-            if (step.motion.steps > 1) {
-              char suffix[32];
-              std::snprintf(suffix, sizeof suffix, "_%04d", index);
-              mesh.stem += suffix;
-            }
+            mesh.stem = deform::step_stem(stem, index, step.motion.steps);
             mesh.points = deformed.mesh.points;
             for (std::size_t node = 0; node < mesh.points.size(); ++node)
               mesh.largest_displacement =

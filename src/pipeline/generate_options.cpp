@@ -2,7 +2,6 @@
 // file only maps keys onto them.
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 
 #include "mixmesh/pipeline/generate.hpp"
 #include "mixmesh/surface/surface_config.hpp"
@@ -154,12 +153,8 @@ GenerateOptions read_generate_options(config::Document& document) {
   // The files a step writes: NAME_STEP, or NAME_STEP_0001 … for a sequence.
   auto stems = [](const deform::DeformStep& step) {
     std::vector<std::string> names;
-    if (step.motion.steps == 1) return std::vector<std::string>{step.name};
-    for (int index = 1; index <= step.motion.steps; ++index) {
-      char suffix[32];
-      std::snprintf(suffix, sizeof suffix, "_%04d", index);
-      names.push_back(step.name + suffix);
-    }
+    for (int index = 1; index <= step.motion.steps; ++index)
+      names.push_back(deform::step_stem(step.name, index, step.motion.steps));
     return names;
   };
   for (config::Section& step : root.sections("deform")) {

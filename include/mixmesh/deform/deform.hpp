@@ -170,6 +170,10 @@ struct DeformStep {
 };
 DeformStep read_deform_step(config::Section& section);
 
+// The file stem of step `step` of a motion of `steps` steps: `stem` itself for a single
+// step, `stem` + "_0003" for step 3 of a sequence.
+std::string step_stem(const std::string& stem, int step, int steps);
+
 // Every step of a motion: step k deforms the initial mesh (or, when
 // motion.incremental, the mesh of step k − 1) and hands its result to `each_step`,
 // which may keep or write it. Stops with mixmesh::Error at the first step whose mesh
