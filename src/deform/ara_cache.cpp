@@ -14,26 +14,8 @@ namespace {
 constexpr char geometry_magic[8] = {'M', 'X', 'A', 'R', 'A', 'G', 'E', '1'};
 static_assert(sizeof(Vector3) == 3 * sizeof(double), "points are stored as three doubles");
 
-// Every value written is also mixed into a checksum, word by word, so that a truncated
-// or damaged block is refused rather than half used.
-std::uint64_t mix(std::uint64_t hash, std::uint64_t word) {
-  hash ^= word * 0x9E3779B97F4A7C15ull;
-  hash = (hash << 27) | (hash >> 37);
-  return hash * 0xBF58476D1CE4E5B9ull + 0x94D049BB133111EBull;
-}
-
-std::uint64_t mix_bytes(std::uint64_t hash, const char* bytes, std::size_t count) {
-  std::size_t offset = 0;
-  for (; offset + 8 <= count; offset += 8) {
-    std::uint64_t word = 0;
-    std::memcpy(&word, bytes + offset, 8);
-    hash = mix(hash, word);
-  }
-  std::uint64_t tail = 0;
-  if (count > offset) std::memcpy(&tail, bytes + offset, count - offset);  // (an empty list has no data)
-  return mix(hash, tail);
-}
-
+// Every value written is also mixed into a checksum (combine_hash, dual_mesh.hpp), so
+// that a truncated or damaged block is refused rather than half used.
 class BlockWriter {
  public:
   explicit BlockWriter(std::ostream& stream) : stream_(stream) {}
@@ -49,7 +31,7 @@ class BlockWriter {
  private:
   void bytes(const char* data, std::size_t count) {
     if (count > 0) stream_.write(data, static_cast<std::streamsize>(count));
-    checksum_ = mix_bytes(checksum_, data, count);
+    checksum_ = combine_hash(checksum_, data, count);
   }
   std::ostream& stream_;
   std::uint64_t checksum_ = 0x61726167656full;
@@ -83,7 +65,7 @@ class BlockReader {
     if (count > 0) stream_.read(data, static_cast<std::streamsize>(count));
     if (!stream_) damaged("truncated");
     remaining_ -= count;
-    checksum_ = mix_bytes(checksum_, data, count);
+    checksum_ = combine_hash(checksum_, data, count);
   }
   std::istream& stream_;
   std::uint64_t remaining_;

@@ -311,6 +311,18 @@ std::uint64_t combine_hash(std::uint64_t hash, const std::vector<Index>& values)
   return mix_all(hash, values);
 }
 
+std::uint64_t combine_hash(std::uint64_t hash, const char* bytes, std::size_t count) {
+  std::size_t offset = 0;
+  for (; offset + 8 <= count; offset += 8) {
+    std::uint64_t word = 0;
+    std::memcpy(&word, bytes + offset, 8);
+    hash = mix(hash, word);
+  }
+  std::uint64_t tail = 0;
+  if (count > offset) std::memcpy(&tail, bytes + offset, count - offset);  // (an empty list has no data)
+  return mix(hash, tail);
+}
+
 std::vector<std::vector<Index>> colour_cells(const DualMesh& dual) {
   const std::size_t cells = dual.cell_count();
   std::vector<std::size_t> offsets(cells + 1, 0);

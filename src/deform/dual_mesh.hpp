@@ -75,6 +75,8 @@ std::string cell_kind_name(int kind);
 std::uint64_t connectivity_hash(const MixedMesh& mesh);
 std::uint64_t points_hash(const std::vector<Vector3>& points);
 std::uint64_t combine_hash(std::uint64_t hash, const std::vector<Index>& values);
+// `count` bytes mixed into a hash, eight at a time (the same mixing as the hashes above).
+std::uint64_t combine_hash(std::uint64_t hash, const char* bytes, std::size_t count);
 
 // Greedy colouring of the dual graph: no two cells sharing a face have one colour.
 // Returns the cells of each colour.
