@@ -5,7 +5,6 @@
 // motion-dependent work.
 #include "mixmesh/deform/ara.hpp"
 
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
@@ -27,22 +26,14 @@ namespace {
 using detail::DualMesh;
 using detail::WallFaces;
 
-template <class Body>
-void parallel_cells(std::size_t count, const Body& body) {
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count),
-                    [&](const tbb::blocked_range<std::size_t>& range) {
-                      for (std::size_t item = range.begin(); item != range.end(); ++item) body(item);
-                    });
-}
-
-// Motion of a wall face: its centre, the centre's displacement and the rotation.
+// Motion of a wall face: its centre's displacement and its rotation (the centre itself is
+// AraGeometry::wall_centres).
 struct FaceMotion {
-  Vector3 centre;
   Vector3 displacement;
   Vector3 rotation;
 };
 
-std::vector<FaceMotion> wall_motion(const DualMesh& dual, const WallFaces& walls, const MixedMesh& mesh,
+std::vector<FaceMotion> wall_motion(const DualMesh& dual, const WallFaces& walls,
                                     const BoundaryMotion& boundary) {
   std::vector<FaceMotion> motion(walls.faces.size());
   for (std::size_t wall = 0; wall < walls.faces.size(); ++wall) {
@@ -50,14 +41,12 @@ std::vector<FaceMotion> wall_motion(const DualMesh& dual, const WallFaces& walls
     const Index* nodes = dual.boundary_nodes(face);
     const int count = dual.face_size(face);
     FaceMotion& entry = motion[wall];
-    entry = {Vector3::Zero(), Vector3::Zero(), Vector3::Zero()};
+    entry = {Vector3::Zero(), Vector3::Zero()};
     for (int local = 0; local < count; ++local) {
       const std::size_t node = static_cast<std::size_t>(nodes[local]);
-      entry.centre += mesh.points[node];
       entry.displacement += boundary.displacement[node];
       entry.rotation += boundary.rotation[node];
     }
-    entry.centre /= count;
     entry.displacement /= count;  // exact for rigid motion: the centre is affine in the nodes
     entry.rotation /= count;
   }
@@ -112,7 +101,7 @@ std::shared_ptr<detail::AraGeometry> prepare_geometry(const MixedMesh& mesh,
 
   entry.centres.resize(cells);
   std::vector<double> volume(cells);
-  parallel_cells(cells, [&](std::size_t cell) {
+  detail::parallel_items(cells, [&](std::size_t cell) {
     entry.centres[cell] = detail::cell_centre(dual, cell, points);
     volume[cell] = std::abs(detail::cell_measure(dual, cell, points));
   });
@@ -130,7 +119,7 @@ std::shared_ptr<detail::AraGeometry> prepare_geometry(const MixedMesh& mesh,
                                                   diffusivity, points);
 
   entry.node_weights.resize(dual.point_cells.size());
-  parallel_cells(points.size(), [&](std::size_t node) {
+  detail::parallel_items(points.size(), [&](std::size_t node) {
     const std::size_t begin = dual.point_cell_offsets[node];
     const std::size_t end = dual.point_cell_offsets[node + 1];
     if (begin == end) return;
@@ -219,11 +208,11 @@ std::vector<Vector3> AraMethod::move(const MixedMesh& mesh, const BoundaryMotion
 
   // 2. Rigid-body initialisation (eq. 9–11).
   stage_clock = Stopwatch();
-  const std::vector<FaceMotion> faces = wall_motion(dual, walls, mesh, boundary);
+  const std::vector<FaceMotion> faces = wall_motion(dual, walls, boundary);
   const bool rotate = options_.predictor == Predictor::rotation;
   std::vector<Vector3> velocity(cells);  // u = x′ − x
   std::vector<Vector3> spin(cells);      // w, rotation vector of the cell
-  parallel_cells(cells, [&](std::size_t cell) {
+  detail::parallel_items(cells, [&](std::size_t cell) {
     const Vector3& x = centres[cell];
     Vector3 moved[2] = {x, x};
     Vector3 rotation[2] = {Vector3::Zero(), Vector3::Zero()};
@@ -234,7 +223,8 @@ std::vector<Vector3> AraMethod::move(const MixedMesh& mesh, const BoundaryMotion
       if (rotate) {
         // x′_n = R_n(x) + Δx_n: rotate about the face centre, then translate with it (eq. 9).
         rotation[side] = face.rotation;
-        moved[side] = detail::rotate(face.rotation, x - face.centre) + face.centre + face.displacement;
+        const Vector3& centre = geometry.wall_centres[static_cast<std::size_t>(wall)];
+        moved[side] = detail::rotate(face.rotation, x - centre) + centre + face.displacement;
       } else {
         moved[side] = x + face.displacement;  // the original algorithm's eq. 1
       }
@@ -285,7 +275,7 @@ std::vector<Vector3> AraMethod::move(const MixedMesh& mesh, const BoundaryMotion
   std::vector<Eigen::Matrix3d> wall_turn;
   if (rotate) {
     cell_turn.resize(cells);
-    parallel_cells(cells, [&](std::size_t cell) {
+    detail::parallel_items(cells, [&](std::size_t cell) {
       cell_turn[cell] = detail::rotation_matrix(spin[cell]) - Eigen::Matrix3d::Identity();
     });
     if (options_.smoothing == Smoothing::rigid_transport) {
@@ -342,7 +332,7 @@ std::vector<Vector3> AraMethod::move(const MixedMesh& mesh, const BoundaryMotion
     }
     return Vector3(sum / total);
   };
-  parallel_cells(points.size(), [&](std::size_t node) {
+  detail::parallel_items(points.size(), [&](std::size_t node) {
     const std::size_t begin = dual.point_cell_offsets[node];
     const std::size_t end = dual.point_cell_offsets[node + 1];
     if (boundary.roles[node] == NodeRole::prescribed || begin == end) {
@@ -359,7 +349,7 @@ std::vector<Vector3> AraMethod::move(const MixedMesh& mesh, const BoundaryMotion
   std::vector<double> deformed_volume(cells);
   std::vector<char> invalid(cells, 0);
   auto check = [&]() {
-    parallel_cells(cells, [&](std::size_t cell) {
+    detail::parallel_items(cells, [&](std::size_t cell) {
       deformed_volume[cell] = detail::cell_measure(dual, cell, result);
       invalid[cell] = !detail::cell_valid(dual, cell, result);
     });
@@ -386,7 +376,7 @@ std::vector<Vector3> AraMethod::move(const MixedMesh& mesh, const BoundaryMotion
       }
     }
     std::vector<Vector3> updated(nodes.size());
-    parallel_cells(nodes.size(), [&](std::size_t slot) {
+    detail::parallel_items(nodes.size(), [&](std::size_t slot) {
       updated[slot] = interpolate(static_cast<std::size_t>(nodes[slot]), pass, &deformed_volume);
     });
     for (std::size_t slot = 0; slot < nodes.size(); ++slot)

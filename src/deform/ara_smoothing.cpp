@@ -12,14 +12,6 @@ namespace mixmesh::deform::detail {
 
 namespace {
 
-template <class Body>
-void parallel_items(std::size_t count, const Body& body) {
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count),
-                    [&](const tbb::blocked_range<std::size_t>& range) {
-                      for (std::size_t item = range.begin(); item != range.end(); ++item) body(item);
-                    });
-}
-
 // Sum of body(item, sum) over all items in fixed chunks added in a fixed order: the
 // same bits whatever the number of threads (a tbb::parallel_reduce would not be).
 constexpr std::size_t chunk_size = 4096;

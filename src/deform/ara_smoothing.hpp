@@ -14,6 +14,9 @@
 // the cells of |(s_i − (A u)_i) / D_i|, the change one Jacobi update would make.
 #pragma once
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <Eigen/Core>
 #include <vector>
 
@@ -21,6 +24,15 @@
 #include "deform/wall_faces.hpp"
 
 namespace mixmesh::deform::detail {
+
+// body(item) for item in [0, count), in parallel.
+template <class Body>
+void parallel_items(std::size_t count, const Body& body) {
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                      for (std::size_t item = range.begin(); item != range.end(); ++item) body(item);
+                    });
+}
 
 // The matrix in CSR form: interior neighbours with σ_ij (eq. 20), the wall faces of every
 // cell with σ_iw, and the diagonal D. It depends on the undeformed mesh alone.
