@@ -78,10 +78,16 @@ inline bool receive(Channel& channel, std::string& text) {
 
 }  // namespace isolated_detail
 
+// A call stopped at its time limit (the caller may fall back to something cheaper).
+class TimeLimitError : public Error {
+ public:
+  using Error::Error;
+};
+
 // Result types need send(Channel&, const Result&) and receive(Channel&, Result&)
 // overloads that argument-dependent lookup finds (see tetgen_call.cpp).
 // `time_limit_seconds` > 0: the child is stopped (SIGALRM) after that many seconds and
-// the call throws mixmesh::Error saying so.
+// the call throws TimeLimitError saying so.
 template <typename Result, typename Body>
 Result run_isolated(const std::string& what, Body body, unsigned time_limit_seconds = 0) {
   using isolated_detail::Channel;
@@ -124,7 +130,8 @@ Result run_isolated(const std::string& what, Body body, unsigned time_limit_seco
   if (complete && tag == 0) return result;
   if (complete && tag == 1) throw Error(message);
   if (WIFSIGNALED(status) && WTERMSIG(status) == SIGALRM && time_limit_seconds > 0)
-    throw Error("farfield: " + what + " did not finish within " + std::to_string(time_limit_seconds) + " s");
+    throw TimeLimitError("farfield: " + what + " did not finish within " +
+                         std::to_string(time_limit_seconds) + " s");
   if (WIFSIGNALED(status))
     throw Error("farfield: " + what + " crashed (signal " + std::to_string(WTERMSIG(status)) + ")");
   throw Error("farfield: " + what + " stopped without a result (exit " + std::to_string(WEXITSTATUS(status)) +

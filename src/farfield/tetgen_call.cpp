@@ -9,6 +9,7 @@
 #include "farfield/farfield_parts.hpp"
 #include "farfield/isolated_call.hpp"
 #include "mixmesh/core/error.hpp"
+#include "mixmesh/mesh/cell_geometry.hpp"
 
 namespace mixmesh::farfield_parts {
 
@@ -165,7 +166,7 @@ double volume6(const std::vector<Vector3>& points, const std::array<Index, 4>& t
   auto at = [&](int corner) -> const Vector3& {
     return points[static_cast<std::size_t>(tetrahedron[static_cast<std::size_t>(corner)])];
   };
-  return (at(1) - at(0)).cross(at(2) - at(0)).dot(at(3) - at(0));
+  return tetrahedron_volume6(at(0), at(1), at(2), at(3));
 }
 
 }  // namespace
@@ -183,10 +184,7 @@ std::size_t flat_tetrahedra(const std::vector<Vector3>& points,
   std::size_t flat = 0;
   for (const auto& tetrahedron : tetrahedra) {
     if (sign * volume6(points, tetrahedron) > 0.0) continue;
-    if (flat++ == 0 && first) {
-      *first = Vector3::Zero();
-      for (Index node : tetrahedron) *first += points[static_cast<std::size_t>(node)] / 4.0;
-    }
+    if (flat++ == 0 && first) *first = cell_centre(CellType::tetrahedron, points, tetrahedron.data());
   }
   return flat;
 }
@@ -198,9 +196,9 @@ TetgenOutput run_tetgen(const TetgenInput& input) {
   try {
     return run_isolated<TetgenOutput>(
         "TetGen", [&] { return tetrahedralise(input); }, input.time_limit_seconds);
-  } catch (const Error& error) {
-    if (input.time_limit_seconds > 0 && std::string(error.what()).find("did not finish") != std::string::npos)
-      throw;
+  } catch (const TimeLimitError&) {
+    throw;  // the caller's fallback; no intersection test after a timeout
+  } catch (const Error&) {
     // Where TetGen's own test (-d) finds intersecting boundary triangles, that is
     // the cause to report, whatever the failure looked like.
     std::string intersections;
