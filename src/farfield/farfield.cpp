@@ -307,7 +307,9 @@ FarFieldResult farfield(const FarFieldInput& input, const FarFieldOptions& optio
     second_pass = true;
   } else if (options.precondition) {
     Vector3 where = Vector3::Zero();
-    const std::size_t flat = farfield_parts::flat_tetrahedra(original, tetrahedra.tetrahedra, &where);
+    const std::size_t flat = farfield_parts::flat_tetrahedra(
+        original, tetrahedra.tetrahedra,
+        farfield_parts::negative_orientation(original, tetrahedra.tetrahedra), &where);
     if (flat > 0) {
       log.info("farfield: " + std::to_string(flat) +
                " tetrahedra flat or inverted after the map back (the first near " + point_text(where) +
@@ -371,7 +373,7 @@ FarFieldResult farfield(const FarFieldInput& input, const FarFieldOptions& optio
     mesh.add_cell(CellType::tetrahedron, nodes);
   }
   Vector3 where = Vector3::Zero();
-  result.flat_tetrahedra = farfield_parts::flat_tetrahedra(original, tetrahedra.tetrahedra, &where);
+  result.flat_tetrahedra = farfield_parts::flat_tetrahedra(original, tetrahedra.tetrahedra, turn, &where);
   if (result.flat_tetrahedra > 0)
     log.warning("farfield: " + std::to_string(result.flat_tetrahedra) +
                 " tetrahedra have no positive volume, the first near " + point_text(where));

@@ -87,9 +87,11 @@ TetgenOutput run_tetgen(const TetgenInput& input);
 bool negative_orientation(const std::vector<Vector3>& points,
                           const std::vector<std::array<Index, 4>>& tetrahedra);
 
-// How many tetrahedra have zero volume or the orientation opposite to the majority;
-// `first`, when given, receives the centre of the first of them.
+// How many tetrahedra have zero volume or the orientation opposite to the majority
+// (`negative`: negative_orientation of the same list); `first`, when given, receives the
+// centre of the first of them.
 std::size_t flat_tetrahedra(const std::vector<Vector3>& points,
-                            const std::vector<std::array<Index, 4>>& tetrahedra, Vector3* first = nullptr);
+                            const std::vector<std::array<Index, 4>>& tetrahedra, bool negative,
+                            Vector3* first = nullptr);
 
 }  // namespace mixmesh::farfield_parts

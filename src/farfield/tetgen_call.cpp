@@ -179,8 +179,9 @@ bool negative_orientation(const std::vector<Vector3>& points,
 }
 
 std::size_t flat_tetrahedra(const std::vector<Vector3>& points,
-                            const std::vector<std::array<Index, 4>>& tetrahedra, Vector3* first) {
-  const double sign = negative_orientation(points, tetrahedra) ? -1.0 : 1.0;
+                            const std::vector<std::array<Index, 4>>& tetrahedra, bool negative,
+                            Vector3* first) {
+  const double sign = negative ? -1.0 : 1.0;
   std::size_t flat = 0;
   for (const auto& tetrahedron : tetrahedra) {
     if (sign * volume6(points, tetrahedron) > 0.0) continue;
