@@ -6,26 +6,21 @@
 
 #include <filesystem>
 
-#include "mixmesh/geometry/airfoil.hpp"
-#include "mixmesh/geometry/planform.hpp"
+#include "mixmesh/config/config.hpp"
 #include "mixmesh/march/march_layers.hpp"
-#include "mixmesh/surface/wing_surface.hpp"
+#include "mixmesh/surface/surface_config.hpp"
 
 namespace {
 
+// The surface of the case file itself ([wing] and [surface]), so the benchmark follows
+// the case when it changes.
 const mixmesh::SurfaceMesh& onera_m6_surface() {
   static const mixmesh::SurfaceMesh surface = [] {
-    const auto airfoil_file =
-        std::filesystem::path(__FILE__).parent_path() / ".." / ".." / "cases" / "airfoils" / "onera_d.dat";
-    mixmesh::ClassicPlanform planform;
-    planform.root_chord = 0.8059;
-    planform.semi_span = 1.1963;
-    planform.leading_edge_sweep_degrees = 30.0;
-    planform.trailing_edge_sweep_degrees = 15.8;
-    mixmesh::SurfaceOptions options;
-    options.spanwise_cells = 40;  // as the case file; the other defaults are the case's
-    return mixmesh::generate_wing_surface(
-        mixmesh::classic_wing(planform, mixmesh::read_airfoil_file(airfoil_file)), options);
+    const auto case_file =
+        std::filesystem::path(__FILE__).parent_path() / ".." / ".." / "cases" / "onera_m6.toml";
+    mixmesh::config::Document document = mixmesh::config::Document::load(case_file);
+    mixmesh::config::Section root = document.root();
+    return mixmesh::build_surface(mixmesh::read_surface_setup(root));
   }();
   return surface;
 }
