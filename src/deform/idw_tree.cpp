@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <type_traits>
 #include <utility>
 
 namespace mixmesh::deform {
@@ -31,15 +32,31 @@ double whole_power(double x, int k) {
   return product;
 }
 
+// function(std::integral_constant<int, n>{}) for the whole exponent n the weights are
+// specialised for (2, 3, 4; 0 for any other exponent).
+template <class Function>
+auto with_whole_exponent(int exponent, Function&& function) {
+  switch (exponent) {
+    case 2:
+      return function(std::integral_constant<int, 2>{});
+    case 3:
+      return function(std::integral_constant<int, 3>{});
+    case 4:
+      return function(std::integral_constant<int, 4>{});
+    default:
+      return function(std::integral_constant<int, 0>{});
+  }
+}
+
 }  // namespace
 
-// Running sums of one evaluation: D = Σ w, N = Σ w a, W = Σ w B, and the error bounds.
 // Monopole estimates of the denominator and of the displacement.
 struct IdwTree::Estimate {
   double denominator = 0.0;
   Vector3 displacement = Vector3::Zero();
 };
 
+// Running sums of one evaluation: D = Σ w, N = Σ w a, W = Σ w B, and the error bounds.
 struct IdwTree::Sums {
   Eigen::Vector4d totals = Eigen::Vector4d::Zero();  // (N, D): N = Σ w a, D = Σ w
   Eigen::Matrix3d weighted_b = Eigen::Matrix3d::Zero();
@@ -378,19 +395,9 @@ void IdwTree::evaluate_group(const Vector3* points, std::size_t count, double to
   }
   for (std::size_t first = 0; first < count; first += max_group_size) {
     const std::size_t size = std::min(max_group_size, count - first);
-    switch (whole_exponent_) {
-      case 2:
-        evaluate_group_tree<2>(points + first, size, tolerance, evaluations + first);
-        break;
-      case 3:
-        evaluate_group_tree<3>(points + first, size, tolerance, evaluations + first);
-        break;
-      case 4:
-        evaluate_group_tree<4>(points + first, size, tolerance, evaluations + first);
-        break;
-      default:
-        evaluate_group_tree<0>(points + first, size, tolerance, evaluations + first);
-    }
+    with_whole_exponent(whole_exponent_, [&](auto exponent) {
+      evaluate_group_tree<decltype(exponent)::value>(points + first, size, tolerance, evaluations + first);
+    });
   }
 }
 
@@ -427,33 +434,18 @@ IdwTree::Evaluation IdwTree::evaluate_exact_sum(const Vector3& point) const {
 }
 
 IdwTree::Evaluation IdwTree::evaluate(const Vector3& point, double tolerance) const {
-  switch (whole_exponent_) {
-    case 2:
-      return with_rotations_ ? evaluate_tree<true, 2>(point, tolerance)
-                             : evaluate_tree<false, 2>(point, tolerance);
-    case 3:
-      return with_rotations_ ? evaluate_tree<true, 3>(point, tolerance)
-                             : evaluate_tree<false, 3>(point, tolerance);
-    case 4:
-      return with_rotations_ ? evaluate_tree<true, 4>(point, tolerance)
-                             : evaluate_tree<false, 4>(point, tolerance);
-    default:
-      return with_rotations_ ? evaluate_tree<true, 0>(point, tolerance)
-                             : evaluate_tree<false, 0>(point, tolerance);
-  }
+  return with_whole_exponent(whole_exponent_, [&](auto exponent) {
+    constexpr int whole = decltype(exponent)::value;
+    return with_rotations_ ? evaluate_tree<true, whole>(point, tolerance)
+                           : evaluate_tree<false, whole>(point, tolerance);
+  });
 }
 
 IdwTree::Evaluation IdwTree::evaluate_exact(const Vector3& point) const {
-  switch (whole_exponent_) {
-    case 2:
-      return with_rotations_ ? evaluate_exact_sum<true, 2>(point) : evaluate_exact_sum<false, 2>(point);
-    case 3:
-      return with_rotations_ ? evaluate_exact_sum<true, 3>(point) : evaluate_exact_sum<false, 3>(point);
-    case 4:
-      return with_rotations_ ? evaluate_exact_sum<true, 4>(point) : evaluate_exact_sum<false, 4>(point);
-    default:
-      return with_rotations_ ? evaluate_exact_sum<true, 0>(point) : evaluate_exact_sum<false, 0>(point);
-  }
+  return with_whole_exponent(whole_exponent_, [&](auto exponent) {
+    constexpr int whole = decltype(exponent)::value;
+    return with_rotations_ ? evaluate_exact_sum<true, whole>(point) : evaluate_exact_sum<false, whole>(point);
+  });
 }
 
 }  // namespace mixmesh::deform
