@@ -130,7 +130,8 @@ std::string scientific(double value) {
 // a plane end gives plane side faces, exact to the last bit. Lines drifting 1e-15 off
 // that plane made the hull there so nearly flat that the far-field tetrahedralisation
 // filled it with slivers of no volume. The sheet's side edges (a wake's tip edge) are
-// left free: their lines turn out round the wing tip with the tip's.
+// left free: their lines turn out round the wing tip with the tip's. Per line, an
+// orthonormal basis of its conormals (empty for most lines).
 std::vector<std::vector<Vector3>> end_conormals(const Front& front, const std::vector<Vector3>& points,
                                                 const std::vector<char>& on_wall) {
   std::vector<Vector3> attachment;
@@ -162,19 +163,23 @@ std::vector<std::vector<Vector3>> end_conormals(const Front& front, const std::v
       if (!on_wall[column]) conormals[column].push_back(conormal);
     }
   }
+  // Each line's conormals as an orthonormal basis (Gram-Schmidt), once for all layers.
+  for (std::vector<Vector3>& column : conormals) {
+    std::vector<Vector3> basis;
+    for (const Vector3& conormal : column) {
+      Vector3 direction = conormal;
+      for (const Vector3& unit : basis) direction -= direction.dot(unit) * unit;
+      if (direction.norm() > 1e-6) basis.push_back(direction.normalized());
+    }
+    column = std::move(basis);
+  }
   return conormals;
 }
 
-// The step from `from` to `to` without its parts along the conormals (Gram-Schmidt),
-// scaled back to its length.
-Vector3 keep_in_sheet_end(const Vector3& from, const Vector3& to, const std::vector<Vector3>& conormals) {
-  if (conormals.empty()) return to;
-  std::vector<Vector3> basis;
-  for (const Vector3& conormal : conormals) {
-    Vector3 direction = conormal;
-    for (const Vector3& unit : basis) direction -= direction.dot(unit) * unit;
-    if (direction.norm() > 1e-6) basis.push_back(direction.normalized());
-  }
+// The step from `from` to `to` without its parts along the orthonormal `basis` of a
+// line's end conormals, scaled back to its length.
+Vector3 keep_in_sheet_end(const Vector3& from, const Vector3& to, const std::vector<Vector3>& basis) {
+  if (basis.empty()) return to;
   Vector3 step = to - from;
   const double length = step.norm();
   for (const Vector3& unit : basis) step -= step.dot(unit) * unit;
