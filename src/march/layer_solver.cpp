@@ -27,19 +27,33 @@ Vector3 ring_position(int entry, const std::vector<Vector3>& positions, double s
   return mirrored;
 }
 
-LaplaceWeights column_weights(const Front& front, std::size_t c, const std::vector<Vector3>& positions,
-                              const std::vector<Vector3>& current, const std::vector<Vector3>& predicted,
-                              double symmetry_y) {
-  if (front.neighbourhood[c] == Neighbourhood::structured) {
-    const auto& s = front.stencil[c];
-    auto at = [&](int k) { return positions[static_cast<std::size_t>(s[static_cast<std::size_t>(k)])]; };
-    const StructuredStencil stencil{at(0), at(1), at(2), at(3), at(4), at(5), at(6), at(7)};
-    return structured_laplace_weights(stencil, predicted[c], current[c]);
-  }
+namespace {
+
+// The neighbour points of column c in the layer: its structured stencil, or its ring
+// (symmetry-plane entries mirrored).
+StructuredStencil stencil_of(const Front& front, std::size_t c, const std::vector<Vector3>& positions) {
+  const auto& s = front.stencil[c];
+  auto at = [&](int k) { return positions[static_cast<std::size_t>(s[static_cast<std::size_t>(k)])]; };
+  return {at(0), at(1), at(2), at(3), at(4), at(5), at(6), at(7)};
+}
+
+std::vector<Vector3> ring_of(const Front& front, std::size_t c, const std::vector<Vector3>& positions,
+                             double symmetry_y) {
   std::vector<Vector3> ring;
   ring.reserve(front.ring[c].size());
   for (int entry : front.ring[c]) ring.push_back(ring_position(entry, positions, symmetry_y));
-  return prism_laplace_weights(ring, positions[c], predicted[c], current[c]);
+  return ring;
+}
+
+}  // namespace
+
+LaplaceWeights column_weights(const Front& front, std::size_t c, const std::vector<Vector3>& positions,
+                              const std::vector<Vector3>& current, const std::vector<Vector3>& predicted,
+                              double symmetry_y) {
+  if (front.neighbourhood[c] == Neighbourhood::structured)
+    return structured_laplace_weights(stencil_of(front, c, positions), predicted[c], current[c]);
+  return prism_laplace_weights(ring_of(front, c, positions, symmetry_y), positions[c], predicted[c],
+                               current[c]);
 }
 
 Vector3 free_column_update(const Front& front, std::size_t c, const std::vector<Vector3>& positions,
@@ -85,17 +99,11 @@ LayerSolution solve_layer_by_sweeps(const Front& front, int sweeps, const std::v
       if (!corrected[c]) return;
       if (front.neighbourhood[c] == Neighbourhood::free) {
         updated[c] = free_column_update(front, c, positions, current, predicted);
+      } else if (front.neighbourhood[c] == Neighbourhood::structured) {
+        updated[c] = structured_laplace_update(stencil_of(front, c, positions), predicted[c], current[c]);
       } else {
-        const LaplaceWeights weights = column_weights(front, c, positions, current, predicted, symmetry_y);
-        Vector3 sum = weights.target_weight * predicted[c];
-        if (front.neighbourhood[c] == Neighbourhood::structured) {
-          for (std::size_t k = 0; k < 8; ++k)
-            sum += weights.neighbour[k] * positions[static_cast<std::size_t>(front.stencil[c][k])];
-        } else {
-          for (std::size_t k = 0; k < front.ring[c].size(); ++k)
-            sum += weights.neighbour[k] * ring_position(front.ring[c][k], positions, symmetry_y);
-        }
-        updated[c] = sum / weights.denominator;
+        updated[c] = prism_laplace_update(ring_of(front, c, positions, symmetry_y), positions[c],
+                                          predicted[c], current[c]);
       }
       if (front.on_symmetry[c]) updated[c].y() = symmetry_y;
     });
