@@ -47,6 +47,51 @@ using CandidateTree =
     nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, CandidateCloud>, CandidateCloud,
                                         3>;
 
+// Squared distance to the nearest of a fixed set of points (a k-d tree over them).
+class NearestPoint {
+ public:
+  explicit NearestPoint(std::vector<Vector3> points) : points_(std::move(points)) { tree_.buildIndex(); }
+  NearestPoint(const NearestPoint&) = delete;  // the tree refers to this object's points
+  NearestPoint& operator=(const NearestPoint&) = delete;
+  double squared_distance(const Vector3& query) const {
+    unsigned nearest = 0;
+    double squared = 0.0;
+    tree_.knnSearch(query.data(), 1, &nearest, &squared);
+    return squared;
+  }
+
+ private:
+  struct Cloud {
+    const std::vector<Vector3>* points;
+    std::size_t kdtree_get_point_count() const { return points->size(); }
+    double kdtree_get_pt(std::size_t index, std::size_t axis) const {
+      return (*points)[index](static_cast<Eigen::Index>(axis));
+    }
+    template <class Box>
+    bool kdtree_get_bbox(Box&) const {
+      return false;
+    }
+  };
+  using Tree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, Cloud>, Cloud, 3>;
+  std::vector<Vector3> points_;
+  Cloud cloud_{&points_};
+  Tree tree_{3, cloud_, nanoflann::KDTreeSingleIndexAdaptorParams(16)};
+};
+
+// The hull's triangles for a CGAL AABB tree (which keeps iterators into the vector).
+std::vector<Triangle3> hull_triangles(const std::vector<Vector3>& points, const std::vector<Triangle>& hull) {
+  std::vector<Triangle3> triangles;
+  triangles.reserve(hull.size());
+  for (const Triangle& triangle : hull) {
+    auto corner = [&](int local) {
+      const Vector3& p = points[static_cast<std::size_t>(triangle[static_cast<std::size_t>(local)])];
+      return Kernel::Point_3(p.x(), p.y(), p.z());
+    };
+    triangles.emplace_back(corner(0), corner(1), corner(2));
+  }
+  return triangles;
+}
+
 // Smallest spacing the metric asks for across the normal: 1/√μ with μ the largest
 // eigenvalue of the metric restricted to the tangent plane.
 double tangential_spacing(const Matrix3& metric, const Vector3& normal) {
@@ -103,14 +148,7 @@ LayerPoints layer_points(const FarFieldInput& input, const std::vector<std::arra
     normal = smoothed;
   }
 
-  std::vector<Triangle3> triangles;
-  for (const auto& triangle : input.hull) {
-    auto point = [&](int corner) {
-      const Vector3& p = at(triangle[static_cast<std::size_t>(corner)]);
-      return Kernel::Point_3(p.x(), p.y(), p.z());
-    };
-    triangles.emplace_back(point(0), point(1), point(2));
-  }
+  const std::vector<Triangle3> triangles = hull_triangles(input.points, input.hull);
   const HullTree hull_tree(triangles.begin(), triangles.end());
 
   // Longest hull edge at each node and the body's thickness below it (along −n to the
@@ -204,46 +242,32 @@ LayerPoints layer_points(const FarFieldInput& input, const std::vector<std::arra
 
 std::vector<Vector3> points_beyond(const std::vector<Vector3>& candidates, const std::vector<Vector3>& near,
                                    const SizeField& size, double ratio) {
-  std::vector<Candidate> cloud_points;
-  for (const Vector3& point : near) cloud_points.push_back({point, 0.0, 0.0, false});
-  const CandidateCloud cloud{&cloud_points};
-  CandidateTree tree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(16));
-  tree.buildIndex();
+  const NearestPoint nearest(near);
   std::vector<Vector3> kept;
   for (const Vector3& candidate : candidates) {
-    unsigned nearest = 0;
-    double squared = 0.0;
-    tree.knnSearch(candidate.data(), 1, &nearest, &squared);
     const double limit = ratio * size(candidate);
-    if (squared > limit * limit) kept.push_back(candidate);
+    if (nearest.squared_distance(candidate) > limit * limit) kept.push_back(candidate);
   }
   return kept;
 }
 
-std::vector<Vector3> points_off_hull(const std::vector<Vector3>& candidates, const std::vector<Vector3>& points,
-                                     const std::vector<Triangle>& hull, double ratio) {
-  std::vector<Triangle3> triangles;
-  std::vector<Candidate> nodes;
+std::vector<Vector3> points_off_hull(const std::vector<Vector3>& candidates,
+                                     const std::vector<Vector3>& points, const std::vector<Triangle>& hull,
+                                     double ratio) {
+  std::vector<Vector3> nodes;
   std::vector<char> seen(points.size(), 0);
-  for (const Triangle& triangle : hull) {
-    Kernel::Point_3 corner[3];
-    for (int local = 0; local < 3; ++local) {
-      const std::size_t node = static_cast<std::size_t>(triangle[static_cast<std::size_t>(local)]);
-      corner[local] = Kernel::Point_3(points[node].x(), points[node].y(), points[node].z());
-      if (!seen[node]) nodes.push_back({points[node], 0.0, 0.0, false});
-      seen[node] = 1;
-    }
-    triangles.emplace_back(corner[0], corner[1], corner[2]);
-  }
+  for (const Triangle& triangle : hull)
+    for (Index node : triangle)
+      if (!seen[static_cast<std::size_t>(node)]) {
+        seen[static_cast<std::size_t>(node)] = 1;
+        nodes.push_back(points[static_cast<std::size_t>(node)]);
+      }
+  const std::vector<Triangle3> triangles = hull_triangles(points, hull);
   const HullTree hull_tree(triangles.begin(), triangles.end());
-  const CandidateCloud cloud{&nodes};
-  CandidateTree tree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(16));
-  tree.buildIndex();
+  const NearestPoint nearest(std::move(nodes));
   std::vector<Vector3> kept;
   for (const Vector3& candidate : candidates) {
-    unsigned nearest = 0;
-    double node_squared = 0.0;
-    tree.knnSearch(candidate.data(), 1, &nearest, &node_squared);
+    const double node_squared = nearest.squared_distance(candidate);
     const double surface_squared =
         hull_tree.squared_distance(Kernel::Point_3(candidate.x(), candidate.y(), candidate.z()));
     if (surface_squared >= ratio * ratio * node_squared) kept.push_back(candidate);
