@@ -58,7 +58,7 @@ void add_generate_command(CLI::App& application) {
     for (const auto& path : write_outputs(result, options.output)) log.info("wrote " + path.string());
     for (const auto& path : write_deformed(result, deformed, options.output))
       log.info("wrote " + path.string());
-    if (!arguments->report.empty()) write_report(arguments->report, result.report);
+    if (!arguments->report.empty()) write_report(arguments->report, result.report, deformed);
     std::cout << table_row(result.report) << '\n';
   });
 }

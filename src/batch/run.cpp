@@ -54,7 +54,8 @@ pid_t start_case(const BatchCase& batch_case, const fs::path& folder, const Batc
   return process;
 }
 
-// Scalar entries of the case's report.toml (points, cells, quality ...); the report
+// Top-level scalar entries of the case's report.toml (points, cells, quality ...; the
+// tables after them, stage times and deformed meshes, repeat those names); the report
 // is optional: a failed case has none.
 std::map<std::string, std::string> read_report(const fs::path& path) {
   std::map<std::string, std::string> report;
@@ -62,8 +63,9 @@ std::map<std::string, std::string> read_report(const fs::path& path) {
   std::ifstream stream(path);
   std::string line;
   while (std::getline(stream, line)) {
+    if (!line.empty() && line[0] == '[') break;
     const auto equals = line.find('=');
-    if (equals == std::string::npos || line.empty() || line[0] == '#' || line[0] == '[') continue;
+    if (equals == std::string::npos || line.empty() || line[0] == '#') continue;
     auto trim = [](std::string text) {
       const auto first = text.find_first_not_of(" \t\"");
       const auto last = text.find_last_not_of(" \t\"\r");
@@ -129,8 +131,9 @@ std::vector<CaseResult> run_batch(const std::vector<BatchCase>& cases, const Bat
 }
 
 void write_summary(const fs::path& path, const std::vector<CaseResult>& results) {
-  const std::vector<std::string> report_columns = {"points",   "hexahedra",  "prisms",
-                                                   "pyramids", "tetrahedra", "min_scaled_jacobian"};
+  const std::vector<std::string> report_columns = {"points",          "hexahedra",  "prisms",
+                                                   "pyramids",        "tetrahedra", "min_scaled_jacobian",
+                                                   "deformed_meshes", "deformed_min_scaled_jacobian"};
   write_atomically(path, [&](const fs::path& temporary) {
     std::ofstream csv(temporary);
     csv << "case,status";

@@ -22,7 +22,13 @@ std::vector<DeformedMesh> run_deform_steps(const GenerateResult& result, const G
           result.mesh, step.motion, *method, log, {}, [&](int index, const deform::DeformResult& deformed) {
             DeformedMesh mesh;
             mesh.stem = deform::step_stem(stem, index, step.motion.steps);
+            mesh.step_name = step.name;
+            mesh.index = index;
+            mesh.steps = step.motion.steps;
             mesh.points = deformed.mesh.points;
+            mesh.min_scaled_jacobian = deformed.after.min_scaled_jacobian;
+            mesh.max_wall_angle_change = deformed.max_wall_angle_change;
+            mesh.seconds = deformed.seconds;
             for (std::size_t node = 0; node < mesh.points.size(); ++node)
               mesh.largest_displacement =
                   std::max(mesh.largest_displacement, (mesh.points[node] - result.mesh.points[node]).norm());

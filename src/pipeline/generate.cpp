@@ -215,7 +215,8 @@ std::string table_row(const GenerateReport& report) {
   return row.str();
 }
 
-void write_report(const std::filesystem::path& path, const GenerateReport& report) {
+void write_report(const std::filesystem::path& path, const GenerateReport& report,
+                  const std::vector<DeformedMesh>& deformed) {
   write_atomically(path, [&](const std::filesystem::path& temporary) {
     std::ofstream file(temporary);
     file << "# mixmesh generate report\n"
@@ -226,8 +227,21 @@ void write_report(const std::filesystem::path& path, const GenerateReport& repor
          << "\nlayers_completed = " << report.march.layers_completed
          << "\nstopped_faces = " << report.march.stopped_faces
          << "\nhull_metric_edges_within_range = " << report.farfield_summary.hull_lengths.within_range
-         << "\nseconds = " << report.seconds << "\n\n[stages]\n";
+         << "\nseconds = " << report.seconds << "\n";
+    if (!deformed.empty()) {
+      double minimum = deformed.front().min_scaled_jacobian;
+      for (const DeformedMesh& mesh : deformed) minimum = std::min(minimum, mesh.min_scaled_jacobian);
+      file << "deformed_meshes = " << deformed.size() << "\ndeformed_min_scaled_jacobian = " << minimum << "\n";
+    }
+    file << "\n[stages]\n";
     for (const StageTiming& stage : report.stages) file << stage.stage << " = " << stage.seconds << "\n";
+    for (const DeformedMesh& mesh : deformed)
+      file << "\n[[deform]]\nstep = \"" << mesh.step_name << "\"\nindex = " << mesh.index
+           << "\nsteps = " << mesh.steps << "\nfile_stem = \"" << mesh.stem
+           << "\"\nlargest_displacement = " << mesh.largest_displacement
+           << "\nmin_scaled_jacobian = " << mesh.min_scaled_jacobian
+           << "\nmax_wall_angle_change = " << mesh.max_wall_angle_change << "\nseconds = " << mesh.seconds
+           << "\n";
     if (!file.flush()) throw Error(path.string() + ": cannot write report");
   });
 }

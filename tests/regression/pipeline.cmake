@@ -35,7 +35,7 @@ set_tests_properties(pipeline_batch_sweep_two_jobs PROPERTIES LABELS regression
 # a three-step ramp); the last deformed mesh checked by the independent checker.
 add_test(NAME pipeline_generate_then_deform
          COMMAND mixmesh-cli generate ${PROJECT_SOURCE_DIR}/cases/pipeline/wing_pitch.toml
-                 --output-dir ${pipeline_folder}/deform)
+                 --output-dir ${pipeline_folder}/deform --report ${pipeline_folder}/deform/report.toml)
 set_tests_properties(pipeline_generate_then_deform PROPERTIES LABELS regression FIXTURES_SETUP deformed_mesh
                      PASS_REGULAR_EXPRESSION "deform ramp step 3/3: largest displacement 0\\.[1-9][^\n]*\n.*wrote [^\n]*wing_pitch_ramp_0003.vtu"
                      FAIL_REGULAR_EXPRESSION "mixmesh: error|INVALID")
@@ -44,6 +44,12 @@ add_test(NAME pipeline_check_mesh_deformed
                  --no-foam -q)
 set_tests_properties(pipeline_check_mesh_deformed PROPERTIES LABELS regression
                      FIXTURES_REQUIRED deformed_mesh PASS_REGULAR_EXPRESSION "\nVALID")
+add_test(NAME pipeline_report_lists_deformed_meshes
+         COMMAND ${MIXMESH_PYTHON} ${CMAKE_CURRENT_LIST_DIR}/pipeline/check_deform_report.py
+                 ${pipeline_folder}/deform/report.toml wing_pitch_pitch wing_pitch_ramp_0001 wing_pitch_ramp_0002
+                 wing_pitch_ramp_0003)
+set_tests_properties(pipeline_report_lists_deformed_meshes PROPERTIES LABELS regression
+                     FIXTURES_REQUIRED deformed_mesh PASS_REGULAR_EXPRESSION "report ok")
 
 # A [[deform]] step whose mesh stays inverted (the wing moved through the far field)
 # fails naming the config line and the step, and writes no file at all, not even the

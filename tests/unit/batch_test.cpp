@@ -64,7 +64,8 @@ TEST(Batch, FailingAndCrashingCasesDoNotStopTheOthers) {
         "while [ $# -gt 0 ]; do case $1 in --report) report=$2; shift;; esac; shift; done\n"
         "if grep -q fail \"$config\"; then echo 'config is bad' >&2; exit 3; fi\n"
         "if grep -q crash \"$config\"; then kill -9 $$; fi\n"
-        "echo 'points = 42' > \"$report\"\n");
+        "printf 'points = 42\\ndeformed_meshes = 2\\n\\n[stages]\\npoints = 7\\n\\n[[deform]]\\n"
+        "min_scaled_jacobian = 0.5\\n' > \"$report\"\n");
   std::vector<batch::BatchCase> cases;
   for (const char* content : {"good", "fail", "crash", "good"}) {
     const fs::path config = folder / (std::string(content) + std::to_string(cases.size()) + ".toml");
@@ -78,7 +79,9 @@ TEST(Batch, FailingAndCrashingCasesDoNotStopTheOthers) {
   const auto results = batch::run_batch(cases, options, Log());
   ASSERT_EQ(results.size(), 4u);
   EXPECT_EQ(results[0].status, "ok");
-  EXPECT_EQ(results[0].report.at("points"), "42");
+  EXPECT_EQ(results[0].report.at("points"), "42");  // not the same name in a table below
+  EXPECT_EQ(results[0].report.at("deformed_meshes"), "2");
+  EXPECT_EQ(results[0].report.count("min_scaled_jacobian"), 0u);
   EXPECT_EQ(results[1].status, "failed (exit 3)");
   EXPECT_EQ(results[2].status, "failed (signal 9)");
   EXPECT_EQ(results[3].status, "ok");
@@ -93,7 +96,8 @@ TEST(Batch, FailingAndCrashingCasesDoNotStopTheOthers) {
   std::getline(summary, line);
   EXPECT_EQ(
       line,
-      "case,status,points,hexahedra,prisms,pyramids,tetrahedra,min_scaled_jacobian,seconds,peak_memory_mib");
+      "case,status,points,hexahedra,prisms,pyramids,tetrahedra,min_scaled_jacobian,deformed_meshes,"
+      "deformed_min_scaled_jacobian,seconds,peak_memory_mib");
   std::getline(summary, line);
-  EXPECT_EQ(line.rfind("good0,ok,42,,,,,,", 0), 0u) << line;
+  EXPECT_EQ(line.rfind("good0,ok,42,,,,,,2,,", 0), 0u) << line;
 }

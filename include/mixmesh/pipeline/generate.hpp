@@ -98,8 +98,15 @@ std::vector<std::filesystem::path> write_outputs(const GenerateResult& result, c
 // (config file:line and name) when a step fails.
 struct DeformedMesh {
   std::string stem;  // NAME_STEPNAME, or NAME_STEPNAME_0003 for step 3 of a sequence
+  std::string step_name;
+  int index = 1, steps = 1;  // step `index` of the `steps` of its motion
   std::vector<Vector3> points;
   double largest_displacement = 0.0;
+  // Figures of the checked mesh (deform::DeformResult): smallest scaled Jacobian,
+  // largest change of a moving wall's grid-line angle (degrees), time of the method.
+  double min_scaled_jacobian = 0.0;
+  double max_wall_angle_change = 0.0;
+  double seconds = 0.0;
 };
 std::vector<DeformedMesh> run_deform_steps(const GenerateResult& result, const GenerateOptions& options,
                                            const Log& log);
@@ -113,8 +120,11 @@ std::vector<std::filesystem::path> write_deformed(const GenerateResult& result,
 std::string validity_details(const ValidityReport& validity);
 
 // "points 456212  surface 32826  hexahedra ..." (Table 1 order), and the same as TOML
-// for batch summaries.
+// for batch summaries: the generated mesh's figures, its stage times and, when the
+// config has [[deform]] steps, one [[deform]] table per deformed mesh (with the count
+// and the smallest scaled Jacobian over them as top-level keys).
 std::string table_row(const GenerateReport& report);
-void write_report(const std::filesystem::path& path, const GenerateReport& report);
+void write_report(const std::filesystem::path& path, const GenerateReport& report,
+                  const std::vector<DeformedMesh>& deformed = {});
 
 }  // namespace mixmesh
