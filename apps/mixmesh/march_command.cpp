@@ -13,6 +13,7 @@
 #include "mixmesh/io/mesh_io.hpp"
 #include "mixmesh/march/march_metrics.hpp"
 #include "mixmesh/pipeline/generate.hpp"
+#include "mixmesh/quality/validity.hpp"
 
 namespace mixmesh::cli {
 
@@ -43,6 +44,13 @@ void run_march(const MarchArguments& arguments) {
   if (arguments.normal) options.march.method = MarchMethod::normal;
   const SurfaceMesh surface = build_surface(options.surface);
   const BoundaryLayer layer = march_layers(surface, options.march, &log);
+  // The same checks as every generated mesh before it is written (volumes, conforming
+  // faces, every boundary face tagged: wall, symmetry, outer hull, free-edge sides).
+  const ValidityReport validity = validate(layer.mesh);
+  log.info("validate: " + validity.summary());
+  if (!validity.valid())
+    throw Error("march: the layers are invalid, nothing written:\n" + validity_details(validity) +
+                validity.summary());
   write_mesh(layer.mesh, arguments.output);  // written under a temporary name, then renamed
   log.info("wrote " + arguments.output.string());
   if (!arguments.compare) return;
@@ -71,7 +79,8 @@ void add_march_command(CLI::App& application) {
   command->add_option("config", arguments->config, "Config file with [wing], [surface] and [march] tables")
       ->required()
       ->check(CLI::ExistingFile);
-  command->add_option("-o,--output", arguments->output, "Output mesh (.vtu, .msh, .su2, .cgns)");
+  command->add_option("-o,--output", arguments->output, "Output mesh (.vtu, .msh, .su2, .cgns)")
+      ->capture_default_str();
   command->add_option("--set", arguments->settings,
                       "Override a config value, KEY=VALUE in TOML syntax (repeatable), e.g. march.layers=24");
   command->add_flag("--normal", arguments->normal,
