@@ -144,16 +144,20 @@ std::vector<Vector3> AraMethod::move(const MixedMesh& mesh, const BoundaryMotion
   report_.geometry_cached = geometry_ && geometry_->connectivity == connectivity &&
                             geometry_->points == point_bits &&
                             geometry_->marker_roles == boundary.marker_roles;
+  // A cache file of nearest faces only (written with cache_geometry off, or by an older
+  // mixmesh) gets the geometry added once it is built, so the next run reads it.
+  bool add_geometry_to_file = false;
   if (!report_.geometry_cached) {
     geometry_.reset();  // release the old one before building the new one
     if (options_.cache_geometry && !options_.cache_file.empty() &&
         std::filesystem::exists(options_.cache_file)) {
-      std::string why_not;
-      geometry_ = detail::read_ara_geometry(options_.cache_file, connectivity, point_bits,
-                                            boundary.marker_roles, why_not);
+      detail::StoredGeometry stored =
+          detail::read_ara_geometry(options_.cache_file, connectivity, point_bits, boundary.marker_roles);
+      geometry_ = std::move(stored.geometry);
       report_.geometry_from_file = geometry_ != nullptr;
-      log.detail("ara: geometry " +
-                 (geometry_ ? "read from " + options_.cache_file.string() : "rebuilt (" + why_not + ")"));
+      add_geometry_to_file = stored.faces_only;
+      log.detail("ara: geometry " + (geometry_ ? "read from " + options_.cache_file.string()
+                                               : "rebuilt (" + stored.why_not + ")"));
     }
     if (!geometry_) geometry_ = prepare_geometry(mesh, boundary.marker_roles, connectivity, point_bits);
   }
@@ -188,6 +192,10 @@ std::vector<Vector3> AraMethod::move(const MixedMesh& mesh, const BoundaryMotion
     }
     nearest_ = std::move(stored);
     log.detail("ara: nearest faces read from " + options_.cache_file.string());
+    if (add_geometry_to_file) {
+      detail::write_ara_cache(nearest_, geometry, options_.cache_file);
+      log.detail("ara: geometry added to " + options_.cache_file.string());
+    }
   }
   report_.cache_used = fits(nearest_);
   if (!report_.cache_used) {

@@ -150,10 +150,9 @@ void write_ara_cache(const NearestFaces& nearest, const AraGeometry& geometry,
   });
 }
 
-std::shared_ptr<AraGeometry> read_ara_geometry(const std::filesystem::path& file, std::uint64_t connectivity,
-                                               std::uint64_t points,
-                                               const std::vector<MarkerRole>& marker_roles,
-                                               std::string& why_not) {
+StoredGeometry read_ara_geometry(const std::filesystem::path& file, std::uint64_t connectivity,
+                                 std::uint64_t points, const std::vector<MarkerRole>& marker_roles) {
+  StoredGeometry result;
   std::ifstream stream(file, std::ios::binary);
   if (!stream) throw Error(file.string() + ": cannot open the ARA cache");
   const std::uint64_t size = std::filesystem::file_size(file);
@@ -161,22 +160,23 @@ std::shared_ptr<AraGeometry> read_ara_geometry(const std::filesystem::path& file
   char magic[8] = {};
   stream.read(magic, sizeof magic);
   if (!stream || std::memcmp(magic, geometry_magic, sizeof magic) != 0) {
-    why_not = "the file holds nearest faces only";
-    return nullptr;
+    result.faces_only = true;
+    result.why_not = "the file holds nearest faces only";
+    return result;
   }
   BlockReader block(stream, size - static_cast<std::uint64_t>(stream.tellg()), file);
   auto geometry = std::make_shared<AraGeometry>();
   geometry->connectivity = block.word();
   geometry->points = block.word();
   if (geometry->connectivity != connectivity || geometry->points != points) {
-    why_not = geometry->connectivity != connectivity ? "it was made for other cells" : "the points moved";
-    return nullptr;
+    result.why_not = geometry->connectivity != connectivity ? "it was made for other cells" : "the points moved";
+    return result;
   }
   geometry->nearest_key = block.word();
   block.values(geometry->marker_roles);
   if (geometry->marker_roles != marker_roles) {
-    why_not = "the markers' roles differ";
-    return nullptr;
+    result.why_not = "the markers' roles differ";
+    return result;
   }
   geometry->dual.planar = block.word() != 0;
   geometry->dual.point_count = block.word();
@@ -187,7 +187,8 @@ std::shared_ptr<AraGeometry> read_ara_geometry(const std::filesystem::path& file
   stream.read(reinterpret_cast<char*>(&stored), sizeof stored);
   if (!stream || stored != computed) block.damaged("checksum");
   if (!consistent(*geometry)) block.damaged("inconsistent sizes");
-  return geometry;
+  result.geometry = std::move(geometry);
+  return result;
 }
 
 }  // namespace mixmesh::deform::detail

@@ -44,12 +44,15 @@ void write_ara_cache(const NearestFaces& nearest, const AraGeometry& geometry,
                      const std::filesystem::path& file);
 
 // The geometry stored in `file` when it was made for a mesh with this connectivity,
-// these points (bit for bit) and these marker roles; null when the file holds none or
-// one of another mesh (the points moved, say), with the reason in `why_not`. Throws
-// mixmesh::Error for a damaged geometry block.
-std::shared_ptr<AraGeometry> read_ara_geometry(const std::filesystem::path& file, std::uint64_t connectivity,
-                                               std::uint64_t points,
-                                               const std::vector<MarkerRole>& marker_roles,
-                                               std::string& why_not);
+// these points (bit for bit) and these marker roles; null when the file holds none
+// (`faces_only`) or one of another mesh (the points moved, say), with the reason in
+// `why_not`. Throws mixmesh::Error for a damaged geometry block.
+struct StoredGeometry {
+  std::shared_ptr<AraGeometry> geometry;
+  bool faces_only = false;
+  std::string why_not;
+};
+StoredGeometry read_ara_geometry(const std::filesystem::path& file, std::uint64_t connectivity,
+                                 std::uint64_t points, const std::vector<MarkerRole>& marker_roles);
 
 }  // namespace mixmesh::deform::detail

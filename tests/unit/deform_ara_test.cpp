@@ -183,6 +183,17 @@ TEST(DeformAra, CacheFileKeepsTheGeometryOfTheSamePointsOnly) {
   EXPECT_EQ(small_reader.move(mesh, boundary, quiet), first);
   EXPECT_TRUE(small_reader.last_report().cache_used);
   EXPECT_FALSE(small_reader.last_report().geometry_from_file);
+  // Read with the geometry wanted, a faces-only file gains it for the run after.
+  AraOptions faces_file = options;
+  faces_file.cache_file = small_file;
+  AraMethod upgrader(faces_file);
+  EXPECT_EQ(upgrader.move(mesh, boundary, quiet), first);
+  EXPECT_TRUE(upgrader.last_report().cache_used);
+  EXPECT_FALSE(upgrader.last_report().geometry_from_file);
+  EXPECT_EQ(std::filesystem::file_size(small_file), std::filesystem::file_size(file));
+  AraMethod upgraded_reader(faces_file);
+  EXPECT_EQ(upgraded_reader.move(mesh, boundary, quiet), first);
+  EXPECT_TRUE(upgraded_reader.last_report().geometry_from_file);
   std::filesystem::remove(small_file);
 
   // Moved points: the nearest faces still serve, the geometry is rebuilt.
