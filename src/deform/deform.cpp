@@ -109,8 +109,7 @@ DeformResult step_from(const MixedMesh& mesh, const MixedMesh& reference, const 
 }  // namespace
 
 DeformResult deform_step(const MixedMesh& mesh, const MixedMesh& reference, const Motion& motion, int step,
-                         DeformationMethod& method, const Log& log, const DeformOptions& options) {
-  (void)options;
+                         DeformationMethod& method, const Log& log) {
   std::shared_ptr<const StartMesh> measured;
   return step_from(mesh, reference, motion, step, method, log, measured);
 }

@@ -142,7 +142,7 @@ std::vector<double> wall_angles(const MixedMesh& mesh, const WallLines& lines);
 
 // One step: boundary motion, method, symmetry projection, validation, quality.
 DeformResult deform_step(const MixedMesh& mesh, const MixedMesh& reference, const Motion& motion, int step,
-                         DeformationMethod& method, const Log& log, const DeformOptions& options = {});
+                         DeformationMethod& method, const Log& log);
 
 // A method by name ("ara", "idw") with its options read from `options` (the [ara] or
 // [idw] table of a motion file; nullptr for defaults).
