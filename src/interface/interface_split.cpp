@@ -1,9 +1,13 @@
 #include "mixmesh/interface/interface_split.hpp"
 
 #include <algorithm>
+#include <array>
 #include <limits>
 #include <map>
 #include <set>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 #include "mixmesh/core/error.hpp"
 #include "mixmesh/mesh/cell_geometry.hpp"
@@ -119,12 +123,12 @@ double worst_piece(CellType type, const std::vector<Vector3>& points, const Inde
 
 // The split point: the cell centre (Wild Fig. 2) unless a piece about it is inverted
 // or nearly so (a thin cell with a warped face), then the best point a compass search
-// around the centre finds. The last point of `points` is the candidate. Returns the
-// worst piece about that point in `best_worst`.
+// around the centre finds. The last point of `points` is the scratch slot for the
+// candidate. Returns the worst piece about that point in `best_worst`.
 Vector3 split_point(CellType type, std::vector<Vector3>& points, const Index* nodes, unsigned outer_faces,
                     unsigned flipped, const InterfaceOptions& options, double& best_worst) {
   Vector3 best = cell_centre(type, points, nodes);
-  points.push_back(best);
+  points.back() = best;
   best_worst = worst_piece(type, points, nodes, outer_faces, flipped, options);
   double step = 0.0;
   for (int corner = 0; corner < node_count(type); ++corner)
@@ -145,16 +149,32 @@ Vector3 split_point(CellType type, std::vector<Vector3>& points, const Index* no
     }
     if (!improved) step *= 0.5;
   }
-  points.pop_back();
   return best;
 }
 
-// Splits one cell about its split point: a pyramid on every quad face that stays, two
-// tetrahedra on every outer quad, one tetrahedron on every triangle face. Outer faces
-// join the hull.
-void split_cell(CellType type, std::size_t cell, const Index* nodes, unsigned outer_faces, int region,
-                const InterfaceOptions& options, InterfaceResult& result) {
-  MixedMesh& out = result.mesh;
+// Where and how a cell is split: the split point, the outer quads cut along the other
+// diagonal than the rule's (bits as in for_each_piece), and the worst piece (not
+// positive: no split makes every piece valid).
+struct SplitChoice {
+  Vector3 point = Vector3::Zero();
+  unsigned flipped = 0u;
+  double worst = 0.0;
+};
+
+// The split of one cell. The search works on a copy of the cell's nodes alone, numbered
+// in the order of their numbers in the mesh (the diagonal rule compares node numbers),
+// with the candidate point after them, so that cells can be searched side by side.
+SplitChoice choose_split(CellType type, const std::vector<Vector3>& mesh_points, const Index* mesh_nodes,
+                         unsigned outer_faces, const InterfaceOptions& options) {
+  const int count = node_count(type);
+  std::array<Index, 8> nodes{};
+  std::vector<Vector3> points(static_cast<std::size_t>(count) + 1);
+  for (int corner = 0; corner < count; ++corner) {
+    Index rank = 0;
+    for (int other = 0; other < count; ++other) rank += mesh_nodes[other] < mesh_nodes[corner];
+    nodes[static_cast<std::size_t>(corner)] = rank;
+    points[static_cast<std::size_t>(rank)] = mesh_points[static_cast<std::size_t>(mesh_nodes[corner])];
+  }
   // The rule's diagonals first; where no split point makes every piece valid (an outer
   // quad twisted by more than the cell is thick, as at a wing tip's trailing edge), the
   // other diagonal of some outer quads: one of the two folds of a twisted quad leans
@@ -164,27 +184,32 @@ void split_cell(CellType type, std::size_t cell, const Index* nodes, unsigned ou
     if (((outer_faces >> face) & 1u) &&
         descriptor(type).faces[static_cast<std::size_t>(face)].node_count == 4)
       outer_quads.push_back(1u << face);
-  unsigned flipped = 0u;
-  double worst = 0.0;
-  Vector3 point = split_point(type, out.points, nodes, outer_faces, flipped, options, worst);
+  SplitChoice choice;
+  choice.point = split_point(type, points, nodes.data(), outer_faces, choice.flipped, options, choice.worst);
   const unsigned combinations = 1u << std::min<std::size_t>(outer_quads.size(), 4);
-  for (unsigned combination = 1; combination < combinations && worst <= 0.0; ++combination) {
+  for (unsigned combination = 1; combination < combinations && choice.worst <= 0.0; ++combination) {
     unsigned candidate = 0u;
     for (std::size_t quad = 0; quad < outer_quads.size() && quad < 4; ++quad)
       if ((combination >> quad) & 1u) candidate |= outer_quads[quad];
     double candidate_worst = 0.0;
     const Vector3 candidate_point =
-        split_point(type, out.points, nodes, outer_faces, candidate, options, candidate_worst);
-    if (candidate_worst > worst) {
-      worst = candidate_worst;
-      point = candidate_point;
-      flipped = candidate;
-    }
+        split_point(type, points, nodes.data(), outer_faces, candidate, options, candidate_worst);
+    if (candidate_worst > choice.worst) choice = {candidate_point, candidate, candidate_worst};
   }
+  return choice;
+}
+
+// Splits one cell about its chosen point: a pyramid on every quad face that stays, two
+// tetrahedra on every outer quad, one tetrahedron on every triangle face. Outer faces
+// join the hull.
+void split_cell(CellType type, std::size_t cell, const Index* nodes, unsigned outer_faces, int region,
+                const InterfaceOptions& options, const SplitChoice& choice, InterfaceResult& result) {
+  MixedMesh& out = result.mesh;
+  const Vector3& point = choice.point;
   const Index centre = static_cast<Index>(out.points.size());
   out.points.push_back(point);
   result.centres.push_back(centre);
-  for_each_piece(type, out.points, nodes, outer_faces, flipped, options, centre,
+  for_each_piece(type, out.points, nodes, outer_faces, choice.flipped, options, centre,
                  [&](CellType piece, const Index* corners, bool outer) {
                    if (!cell_shape(piece, out.points, corners).valid())
                      throw Error("interface: splitting " + std::string(name(type)) + " " +
@@ -296,7 +321,20 @@ InterfaceResult split_interface(const MixedMesh& mesh, const OuterLayer& layer,
     const CellBlock& block = mesh.block(type);
     for (std::size_t cell = 0; cell < outer_faces.size(); ++cell)
       if (!split[cell]) out.add_cell(type, mesh.cell(type, cell), block.regions[cell]);
-    for (std::size_t cell : order) {
+    // The split points, found side by side: each search evaluates hundreds of piece
+    // shapes on the thin cells of free edges, and depends on its own cell alone.
+    std::vector<SplitChoice> choices(order.size());
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, order.size(), 64),
+                      [&](const tbb::blocked_range<std::size_t>& range) {
+                        for (std::size_t item = range.begin(); item != range.end(); ++item) {
+                          const std::size_t cell = order[item];
+                          if (split[cell])
+                            choices[item] = choose_split(type, mesh.points, mesh.cell(type, cell),
+                                                         outer_faces[cell], options);
+                        }
+                      });
+    for (std::size_t item = 0; item < order.size(); ++item) {
+      const std::size_t cell = order[item];
       if (split[cell]) {
         // Try the centre split; where a piece would be inverted (thin cells with a warped
         // face), undo it and, if allowed, keep the cell and cap its outer quads instead.
@@ -307,7 +345,7 @@ InterfaceResult split_interface(const MixedMesh& mesh, const OuterLayer& layer,
                                                    out.block(CellType::pyramid).regions.size()};
         try {
           split_cell(type, cell, mesh.cell(type, cell), outer_faces[cell], block.regions[cell], options,
-                     result);
+                     choices[item], result);
         } catch (const Error&) {
           if (!options.cap_unsplittable_cells) throw;
           out.points.resize(points);

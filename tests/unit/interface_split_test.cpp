@@ -1,6 +1,8 @@
 #include <gtest/gtest.h>
+#include <tbb/global_control.h>
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 
 #include "mixmesh/core/error.hpp"
@@ -315,4 +317,32 @@ TEST(InterfaceSplit, CapOnATwistedQuadIsRaisedUntilValid) {
   const FaceConnectivity faces = match_faces(result.mesh);
   EXPECT_TRUE(faces.conforming());
   EXPECT_TRUE(faces.untagged_boundary.empty());
+}
+
+// The split points are searched side by side; the mesh must not depend on how many
+// threads search. A thin, curved 24 × 24 block: many outer cells (more than one chunk
+// of 64), each so thin that its centre split is not good enough and the search runs.
+TEST(InterfaceSplit, SplitIsTheSameOnOneThreadAndOnMany) {
+  const MixedMesh input = hexahedron_block(24, 24, 2, [](const Vector3& point) {
+    return Vector3(point.x(), point.y(),
+                   0.002 * point.z() * (1.0 + 0.3 * std::sin(1.3 * point.x() + 0.7 * point.y())) +
+                       0.01 * std::sin(0.4 * point.x()) * std::cos(0.3 * point.y()));
+  });
+  const OuterLayer layer = top_layer(24, 24, 2);
+  InterfaceResult serial;
+  {
+    const tbb::global_control one_thread(tbb::global_control::max_allowed_parallelism, 1);
+    serial = split_interface(input, layer);
+  }
+  const InterfaceResult parallel = split_interface(input, layer);
+  // (Not expect_sound_split: the warped top quads are cut along a diagonal, which
+  // changes the volume by their warp.)
+  EXPECT_EQ(invalid_cells(parallel.mesh), 0);
+  EXPECT_TRUE(match_faces(parallel.mesh).conforming());
+  EXPECT_EQ(parallel.capped_cells, 0u);
+  EXPECT_EQ(parallel.mesh.points, serial.mesh.points);
+  for (CellType type : all_cell_types)
+    EXPECT_EQ(parallel.mesh.block(type).nodes, serial.mesh.block(type).nodes);
+  EXPECT_EQ(parallel.hull, serial.hull);
+  EXPECT_GT(parallel.mesh.points.size(), input.points.size() + 24 * 24 - 1);
 }
