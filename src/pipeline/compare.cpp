@@ -11,6 +11,7 @@
 
 #include "mixmesh/core/atomic_file.hpp"
 #include "mixmesh/core/error.hpp"
+#include "mixmesh/core/quoted.hpp"
 #include "mixmesh/surface/isotropic_surface.hpp"
 
 namespace mixmesh {
@@ -42,17 +43,6 @@ std::string ratio_text(const CompareRow& row, const std::vector<CompareRow>& row
   char text[32];
   std::snprintf(text, sizeof text, "%.1f %%", 100.0 * point_ratio_to_hybrid(row, rows));
   return text;
-}
-
-// JSON string contents: the labels and paths here hold no control characters, but a
-// path may hold quotes or backslashes.
-std::string json_string(const std::string& text) {
-  std::string quoted = "\"";
-  for (char character : text) {
-    if (character == '"' || character == '\\') quoted += '\\';
-    quoted += character;
-  }
-  return quoted + "\"";
 }
 
 void write_text(const std::filesystem::path& path, const std::string& text) {
@@ -255,8 +245,8 @@ void write_compare_json(const std::filesystem::path& path, const std::vector<Com
     json << "  " << (rows == &measured ? "\"measured\"" : "\"reference\"") << ": [\n";
     for (std::size_t k = 0; k < rows->size(); ++k) {
       const CompareRow& row = (*rows)[k];
-      json << "    {\"mesh\": " << json_string(row.key) << ", \"label\": " << json_string(row.label)
-           << ", \"source\": " << json_string(row.source) << ", \"points\": " << row.points
+      json << "    {\"mesh\": " << quoted(row.key) << ", \"label\": " << quoted(row.label)
+           << ", \"source\": " << quoted(row.source) << ", \"points\": " << row.points
            << ", \"surface_elements\": " << row.surface_elements << ", \"hexahedra\": " << row.hexahedra
            << ", \"tetrahedra\": " << row.tetrahedra << ", \"prisms\": " << row.prisms
            << ", \"pyramids\": " << row.pyramids << ", \"points_to_hybrid\": ";
@@ -267,7 +257,7 @@ void write_compare_json(const std::filesystem::path& path, const std::vector<Com
       }
       if (rows == &measured)
         json << ", \"min_scaled_jacobian\": " << row.min_scaled_jacobian << ", \"seconds\": " << row.seconds
-             << ", \"mesh_file\": " << json_string(row.mesh_file.string());
+             << ", \"mesh_file\": " << quoted(row.mesh_file.string());
       json << (k + 1 < rows->size() ? "},\n" : "}\n");
     }
     json << (rows == &measured ? "  ],\n" : "  ]\n");

@@ -8,6 +8,7 @@
 
 #include "assemble.hpp"
 #include "mixmesh/core/atomic_file.hpp"
+#include "mixmesh/core/quoted.hpp"
 #include "mixmesh/io/mesh_io.hpp"
 #include "mixmesh/metric/metric.hpp"
 #include "mixmesh/quality/cell_quality.hpp"
@@ -231,14 +232,15 @@ void write_report(const std::filesystem::path& path, const GenerateReport& repor
     if (!deformed.empty()) {
       double minimum = deformed.front().min_scaled_jacobian;
       for (const DeformedMesh& mesh : deformed) minimum = std::min(minimum, mesh.min_scaled_jacobian);
-      file << "deformed_meshes = " << deformed.size() << "\ndeformed_min_scaled_jacobian = " << minimum << "\n";
+      file << "deformed_meshes = " << deformed.size() << "\ndeformed_min_scaled_jacobian = " << minimum
+           << "\n";
     }
     file << "\n[stages]\n";
     for (const StageTiming& stage : report.stages) file << stage.stage << " = " << stage.seconds << "\n";
     for (const DeformedMesh& mesh : deformed)
-      file << "\n[[deform]]\nstep = \"" << mesh.step_name << "\"\nindex = " << mesh.index
-           << "\nsteps = " << mesh.steps << "\nfile_stem = \"" << mesh.stem
-           << "\"\nlargest_displacement = " << mesh.largest_displacement
+      file << "\n[[deform]]\nstep = " << quoted(mesh.step_name) << "\nindex = " << mesh.index
+           << "\nsteps = " << mesh.steps << "\nfile_stem = " << quoted(mesh.stem)
+           << "\nlargest_displacement = " << mesh.largest_displacement
            << "\nmin_scaled_jacobian = " << mesh.min_scaled_jacobian
            << "\nmax_wall_angle_change = " << mesh.max_wall_angle_change << "\nseconds = " << mesh.seconds
            << "\n";

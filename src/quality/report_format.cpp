@@ -5,6 +5,8 @@
 #include <iomanip>
 #include <sstream>
 
+#include "mixmesh/core/quoted.hpp"
+
 namespace mixmesh {
 
 namespace {
@@ -15,35 +17,6 @@ std::string number(double value) {
   char text[32];
   std::snprintf(text, sizeof text, "%.17g", value);
   return text;
-}
-
-std::string quoted(const std::string& text) {
-  std::string out = "\"";
-  for (char character : text) {
-    switch (character) {
-      case '"':
-        out += "\\\"";
-        break;
-      case '\\':
-        out += "\\\\";
-        break;
-      case '\n':
-        out += "\\n";
-        break;
-      case '\t':
-        out += "\\t";
-        break;
-      default:
-        if (static_cast<unsigned char>(character) < 0x20) {
-          char escape[8];
-          std::snprintf(escape, sizeof escape, "\\u%04x", character);
-          out += escape;
-        } else {
-          out += character;
-        }
-    }
-  }
-  return out + '"';
 }
 
 std::size_t planar_count(const MixedMesh& mesh, FaceType type) {

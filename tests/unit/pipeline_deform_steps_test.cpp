@@ -1,6 +1,8 @@
 // [[deform]] steps of a generation config: how they are read and what is refused.
 #include <gtest/gtest.h>
 
+#include <toml++/toml.h>
+#include <filesystem>
 #include <string>
 
 #include "mixmesh/core/error.hpp"
@@ -69,6 +71,29 @@ TEST(PipelineDeformSteps, RefusesABatchSweepInsideAStep) {
                          step("a"),
                      true),
             "");
+}
+
+// The report is TOML that reads back: a step name with quotes and a backslash is escaped.
+TEST(PipelineDeformSteps, ReportReadsBackWithTheStepNames) {
+  std::vector<DeformedMesh> meshes(2);
+  meshes[0].step_name = "pitch \"up\" \\ 3";
+  meshes[0].stem = "wing_" + meshes[0].step_name;
+  meshes[0].min_scaled_jacobian = 0.25;
+  meshes[1].step_name = "ramp";
+  meshes[1].stem = "wing_ramp_0002";
+  meshes[1].index = 2;
+  meshes[1].steps = 3;
+  meshes[1].min_scaled_jacobian = 0.125;
+  const auto path = std::filesystem::temp_directory_path() / "mixmesh_deform_report.toml";
+  write_report(path, GenerateReport{}, meshes);
+  const toml::table report = toml::parse_file(path.string());
+  std::filesystem::remove(path);
+  EXPECT_EQ(report["deformed_meshes"].value<int>(), 2);
+  EXPECT_EQ(report["deformed_min_scaled_jacobian"].value<double>(), 0.125);
+  EXPECT_EQ(report["deform"][0]["step"].value<std::string>(), meshes[0].step_name);
+  EXPECT_EQ(report["deform"][0]["file_stem"].value<std::string>(), meshes[0].stem);
+  EXPECT_EQ(report["deform"][1]["index"].value<int>(), 2);
+  EXPECT_EQ(report["deform"][1]["steps"].value<int>(), 3);
 }
 
 }  // namespace

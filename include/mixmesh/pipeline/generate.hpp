@@ -99,11 +99,12 @@ std::vector<std::filesystem::path> write_outputs(const GenerateResult& result, c
 struct DeformedMesh {
   std::string stem;  // NAME_STEPNAME, or NAME_STEPNAME_0003 for step 3 of a sequence
   std::string step_name;
-  int index = 1, steps = 1;  // step `index` of the `steps` of its motion
+  int index = 1;  // step `index` of the `steps` of its motion
+  int steps = 1;
   std::vector<Vector3> points;
   double largest_displacement = 0.0;
   // Figures of the checked mesh (deform::DeformResult): smallest scaled Jacobian,
-  // largest change of a moving wall's grid-line angle (degrees), time of the method.
+  // largest change of a moving wall's grid-line angle (degrees), time of the step.
   double min_scaled_jacobian = 0.0;
   double max_wall_angle_change = 0.0;
   double seconds = 0.0;
