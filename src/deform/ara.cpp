@@ -5,7 +5,6 @@
 // motion-dependent work.
 #include "mixmesh/deform/ara.hpp"
 
-
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -193,8 +192,14 @@ std::vector<Vector3> AraMethod::move(const MixedMesh& mesh, const BoundaryMotion
     nearest_ = std::move(stored);
     log.detail("ara: nearest faces read from " + options_.cache_file.string());
     if (add_geometry_to_file) {
-      detail::write_ara_cache(nearest_, geometry, options_.cache_file);
-      log.detail("ara: geometry added to " + options_.cache_file.string());
+      // Only a saving for the next run: a cache file that cannot be rewritten (a
+      // read-only folder) leaves this run as it was.
+      try {
+        detail::write_ara_cache(nearest_, geometry, options_.cache_file);
+        log.detail("ara: geometry added to " + options_.cache_file.string());
+      } catch (const Error& error) {
+        log.warning(std::string("ara: geometry not added to the cache: ") + error.what());
+      }
     }
   }
   report_.cache_used = fits(nearest_);

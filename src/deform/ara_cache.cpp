@@ -157,11 +157,15 @@ StoredGeometry read_ara_geometry(const std::filesystem::path& file, std::uint64_
   if (!stream) throw Error(file.string() + ": cannot open the ARA cache");
   const std::uint64_t size = std::filesystem::file_size(file);
   skip_nearest_part(stream, file);
+  if (stream.peek() == std::char_traits<char>::eof()) {
+    result.faces_only = true;
+    result.why_not = "the file holds nearest faces only";
+    return result;
+  }
   char magic[8] = {};
   stream.read(magic, sizeof magic);
   if (!stream || std::memcmp(magic, geometry_magic, sizeof magic) != 0) {
-    result.faces_only = true;
-    result.why_not = "the file holds nearest faces only";
+    result.why_not = "its geometry block is of another format";
     return result;
   }
   BlockReader block(stream, size - static_cast<std::uint64_t>(stream.tellg()), file);
@@ -169,7 +173,8 @@ StoredGeometry read_ara_geometry(const std::filesystem::path& file, std::uint64_
   geometry->connectivity = block.word();
   geometry->points = block.word();
   if (geometry->connectivity != connectivity || geometry->points != points) {
-    result.why_not = geometry->connectivity != connectivity ? "it was made for other cells" : "the points moved";
+    result.why_not =
+        geometry->connectivity != connectivity ? "it was made for other cells" : "the points moved";
     return result;
   }
   geometry->nearest_key = block.word();

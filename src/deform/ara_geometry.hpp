@@ -43,15 +43,17 @@ void skip_nearest_part(std::istream& stream, const std::filesystem::path& file);
 void write_ara_cache(const NearestFaces& nearest, const AraGeometry& geometry,
                      const std::filesystem::path& file);
 
-// The geometry stored in `file` when it was made for a mesh with this connectivity,
-// these points (bit for bit) and these marker roles; null when the file holds none
-// (`faces_only`) or one of another mesh (the points moved, say), with the reason in
-// `why_not`. Throws mixmesh::Error for a damaged geometry block.
+// What a cache file offers: its geometry when it fits, else null and why not;
+// `faces_only` when the file ends after the nearest faces (no geometry block at all).
 struct StoredGeometry {
   std::shared_ptr<AraGeometry> geometry;
   bool faces_only = false;
   std::string why_not;
 };
+// The geometry stored in `file` when it was made for a mesh with this connectivity,
+// these points (bit for bit) and these marker roles; none when the file holds none or
+// one of another mesh (the points moved, say). Throws mixmesh::Error for a damaged
+// geometry block.
 StoredGeometry read_ara_geometry(const std::filesystem::path& file, std::uint64_t connectivity,
                                  std::uint64_t points, const std::vector<MarkerRole>& marker_roles);
 

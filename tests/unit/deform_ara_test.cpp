@@ -194,6 +194,16 @@ TEST(DeformAra, CacheFileKeepsTheGeometryOfTheSamePointsOnly) {
   AraMethod upgraded_reader(faces_file);
   EXPECT_EQ(upgraded_reader.move(mesh, boundary, quiet), first);
   EXPECT_TRUE(upgraded_reader.last_report().geometry_from_file);
+  // A geometry block of a format this mixmesh does not know is neither used nor
+  // overwritten.
+  std::filesystem::remove(small_file);
+  AraMethod{faces_only}.move(mesh, boundary, quiet);
+  { std::ofstream(small_file, std::ios::binary | std::ios::app) << "MXARAGE9 a later layout"; }
+  const auto unknown_size = std::filesystem::file_size(small_file);
+  AraMethod unknown_reader(faces_file);
+  EXPECT_EQ(unknown_reader.move(mesh, boundary, quiet), first);
+  EXPECT_FALSE(unknown_reader.last_report().geometry_from_file);
+  EXPECT_EQ(std::filesystem::file_size(small_file), unknown_size);
   std::filesystem::remove(small_file);
 
   // Moved points: the nearest faces still serve, the geometry is rebuilt.
