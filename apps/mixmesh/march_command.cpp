@@ -25,6 +25,7 @@ struct MarchArguments {
   std::vector<std::string> settings;
   bool normal = false;
   bool compare = false;
+  bool keep_invalid = false;
   bool quiet = false;
 };
 
@@ -48,9 +49,17 @@ void run_march(const MarchArguments& arguments) {
   // faces, every boundary face tagged: wall, symmetry, outer hull, free-edge sides).
   const ValidityReport validity = validate(layer.mesh);
   log.info("validate: " + validity.summary());
-  if (!validity.valid())
-    throw Error("march: the layers are invalid, nothing written:\n" + validity_details(validity) +
-                validity.summary());
+  if (!validity.valid()) {
+    std::cerr << validity_details(validity);
+    if (arguments.keep_invalid) {
+      std::filesystem::path kept = arguments.output;
+      kept.replace_extension(".INVALID.vtu");
+      write_mesh(layer.mesh, kept);
+      log.warning("wrote the invalid layers to " + kept.string());
+    }
+    throw Error("march: the layers are invalid, " + arguments.output.string() +
+                " not written: " + validity.summary());
+  }
   write_mesh(layer.mesh, arguments.output);  // written under a temporary name, then renamed
   log.info("wrote " + arguments.output.string());
   if (!arguments.compare) return;
@@ -87,6 +96,8 @@ void add_march_command(CLI::App& application) {
                     "March the plain-normal baseline instead of the smoothed method");
   command->add_flag("--compare", arguments->compare,
                     "Also march the other method and print both methods' quality figures");
+  command->add_flag("--keep-invalid", arguments->keep_invalid,
+                    "If the layers are invalid, write them to NAME.INVALID.vtu beside the output");
   command->add_flag("-q,--quiet", arguments->quiet, "Print nothing but errors (and the --compare table)");
   command->callback([arguments]() { run_march(*arguments); });
 }
