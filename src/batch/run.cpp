@@ -63,9 +63,10 @@ std::map<std::string, std::string> read_report(const fs::path& path) {
   std::ifstream stream(path);
   std::string line;
   while (std::getline(stream, line)) {
-    if (!line.empty() && line[0] == '[') break;
+    if (line.empty() || line[0] == '#') continue;
+    if (line[0] == '[') break;
     const auto equals = line.find('=');
-    if (equals == std::string::npos || line.empty() || line[0] == '#') continue;
+    if (equals == std::string::npos) continue;
     auto trim = [](std::string text) {
       const auto first = text.find_first_not_of(" \t\"");
       const auto last = text.find_last_not_of(" \t\"\r");
@@ -131,9 +132,9 @@ std::vector<CaseResult> run_batch(const std::vector<BatchCase>& cases, const Bat
 }
 
 void write_summary(const fs::path& path, const std::vector<CaseResult>& results) {
-  const std::vector<std::string> report_columns = {"points",          "hexahedra",  "prisms",
-                                                   "pyramids",        "tetrahedra", "min_scaled_jacobian",
-                                                   "deformed_meshes", "deformed_min_scaled_jacobian"};
+  const std::vector<std::string> report_columns = {
+      "points",     "hexahedra",           "prisms",          "pyramids",
+      "tetrahedra", "min_scaled_jacobian", "deformed_meshes", "deformed_min_scaled_jacobian"};
   write_atomically(path, [&](const fs::path& temporary) {
     std::ofstream csv(temporary);
     csv << "case,status";

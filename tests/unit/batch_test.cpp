@@ -94,10 +94,9 @@ TEST(Batch, FailingAndCrashingCasesDoNotStopTheOthers) {
   batch::write_summary(folder / "summary.csv", results);
   std::ifstream summary(folder / "summary.csv");
   std::getline(summary, line);
-  EXPECT_EQ(
-      line,
-      "case,status,points,hexahedra,prisms,pyramids,tetrahedra,min_scaled_jacobian,deformed_meshes,"
-      "deformed_min_scaled_jacobian,seconds,peak_memory_mib");
+  EXPECT_EQ(line,
+            "case,status,points,hexahedra,prisms,pyramids,tetrahedra,min_scaled_jacobian,deformed_meshes,"
+            "deformed_min_scaled_jacobian,seconds,peak_memory_mib");
   std::getline(summary, line);
   EXPECT_EQ(line.rfind("good0,ok,42,,,,,,2,,", 0), 0u) << line;
 }
