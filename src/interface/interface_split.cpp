@@ -229,7 +229,7 @@ void split_cell(CellType type, std::size_t cell, const Index* nodes, unsigned ou
 // Keeps the cell and caps every outer quad with a pyramid outside it, apex above the
 // quad's centre at cap_height × its shortest edge; the caps' sides join the hull.
 void cap_cell(CellType type, std::size_t cell, const Index* nodes, unsigned outer_faces, int region,
-              const InterfaceOptions& options, InterfaceResult& result) {
+              const InterfaceOptions& options, double cap_height, InterfaceResult& result) {
   MixedMesh& out = result.mesh;
   const CellDescriptor& shape = descriptor(type);
   for (int face = 0; face < shape.face_count; ++face) {
@@ -252,7 +252,7 @@ void cap_cell(CellType type, std::size_t cell, const Index* nodes, unsigned oute
     }
     const Vector3 normal = face_area_vector(out.points, corners, 4).normalized();
     const Index apex = static_cast<Index>(out.points.size());
-    out.points.push_back(middle + options.cap_height * shortest * normal);
+    out.points.push_back(middle + cap_height * shortest * normal);
     // Seen from the apex (outside) the outward winding is counter-clockwise already.
     const Index pyramid[5] = {corners[0], corners[1], corners[2], corners[3], apex};
     // A twisted quad needs a higher apex (its corner normals lean away from the mean
@@ -263,9 +263,8 @@ void cap_cell(CellType type, std::size_t cell, const Index* nodes, unsigned oute
             .norm(),
         (out.points[static_cast<std::size_t>(corners[3])] - out.points[static_cast<std::size_t>(corners[1])])
             .norm());
-    for (double height = options.cap_height * shortest;
-         !cell_shape(CellType::pyramid, out.points, pyramid).valid() &&
-         2.0 * height <= options.cap_height_limit * diagonal;) {
+    for (double height = cap_height * shortest; !cell_shape(CellType::pyramid, out.points, pyramid).valid() &&
+                                                2.0 * height <= options.cap_height_limit * diagonal;) {
       height *= 2.0;
       out.points.back() = middle + height * normal;
     }
@@ -293,6 +292,32 @@ InterfaceResult split_interface(const MixedMesh& mesh, const OuterLayer& layer,
   out.marker_names = mesh.marker_names;
   for (CellType type : {CellType::tetrahedron, CellType::pyramid}) out.block(type) = mesh.block(type);
 
+  // The boundary quads tagged capped_marker: their cells are capped, not split.
+  std::set<FaceKey> capped_quads;
+  const int capped_marker = options.capped_marker.empty() ? -1 : mesh.find_marker(options.capped_marker);
+  if (capped_marker >= 0)
+    for (std::size_t face = 0; face < mesh.face_count(FaceType::quad); ++face)
+      if (mesh.faces(FaceType::quad).markers[face] == capped_marker)
+        capped_quads.insert(sorted_face_key(mesh.face(FaceType::quad, face), 4));
+
+  // Nodes of the other outer faces: a hexahedron touching them is split as usual, so
+  // caps stay away from where the marked hull meets the rest (a wake's trailing edge,
+  // the tip trailing edge), whose faces meet at angles a cap could cross (a twisted tip).
+  // Prisms are capped regardless: the one marked prism of the march, the first cell
+  // between the two sheet lines at a junction, has no split point off its edges.
+  std::vector<char> plain_hull_node(mesh.points.size(), 0);
+  for (const auto& [type, cells] :
+       {std::pair{CellType::hexahedron, &layer.hexahedra}, std::pair{CellType::prism, &layer.prisms}})
+    for (const OuterCell& outer : *cells) {
+      const LocalFace& local = descriptor(type).faces[static_cast<std::size_t>(outer.outer_face)];
+      Index corners[4] = {-1, -1, -1, -1};
+      for (int corner = 0; corner < local.node_count; ++corner)
+        corners[corner] = mesh.cell(type, outer.cell)[local.nodes[static_cast<std::size_t>(corner)]];
+      if (local.node_count == 4 && capped_quads.count(sorted_face_key(corners, 4))) continue;
+      for (int corner = 0; corner < local.node_count; ++corner)
+        plain_hull_node[static_cast<std::size_t>(corners[corner])] = 1;
+    }
+
   // Outer faces per cell as bit masks; cells in order of their first listing.
   std::set<FaceKey> hull_faces;  // to drop the old tags of the outer faces
   for (const auto& [type, cells] :
@@ -310,17 +335,34 @@ InterfaceResult split_interface(const MixedMesh& mesh, const OuterLayer& layer,
     }
     // A cell is split when a quad faces the far field; a prism whose outer faces are
     // triangles passes through and adds them to the hull as they are.
-    std::vector<char> split(outer_faces.size(), 0);
+    // Cells with an outer quad tagged capped_marker are capped instead, except hexahedra
+    // that touch another outer face.
+    std::vector<char> split(outer_faces.size(), 0), capped(outer_faces.size(), 0);
     for (std::size_t cell : order) {
       bool quad = false;
-      for (int face = 0; face < descriptor(type).face_count; ++face)
-        quad = quad || (((outer_faces[cell] >> face) & 1u) &&
-                        descriptor(type).faces[static_cast<std::size_t>(face)].node_count == 4);
-      split[cell] = quad;
+      for (int face = 0; face < descriptor(type).face_count; ++face) {
+        if (!((outer_faces[cell] >> face) & 1u)) continue;
+        const LocalFace& local = descriptor(type).faces[static_cast<std::size_t>(face)];
+        if (local.node_count != 4) continue;
+        quad = true;
+        Index corners[4];
+        for (int corner = 0; corner < 4; ++corner)
+          corners[corner] = mesh.cell(type, cell)[local.nodes[static_cast<std::size_t>(corner)]];
+        capped[cell] = capped[cell] || capped_quads.count(sorted_face_key(corners, 4)) > 0;
+      }
+      const Index* nodes = mesh.cell(type, cell);
+      auto plain = [&](Index node) { return plain_hull_node[static_cast<std::size_t>(node)] != 0; };
+      if (type == CellType::hexahedron && std::any_of(nodes, nodes + node_count(type), plain))
+        capped[cell] = 0;
+      split[cell] = quad && !capped[cell];
     }
     const CellBlock& block = mesh.block(type);
     for (std::size_t cell = 0; cell < outer_faces.size(); ++cell)
       if (!split[cell]) out.add_cell(type, mesh.cell(type, cell), block.regions[cell]);
+    for (std::size_t cell : order)
+      if (capped[cell])
+        cap_cell(type, cell, mesh.cell(type, cell), outer_faces[cell], block.regions[cell], options,
+                 options.marked_cap_height, result);
     // The split points, found side by side: each search evaluates hundreds of piece
     // shapes on the thin cells of free edges, and depends on its own cell alone.
     std::vector<SplitChoice> choices(order.size());
@@ -335,6 +377,7 @@ InterfaceResult split_interface(const MixedMesh& mesh, const OuterLayer& layer,
                       });
     for (std::size_t item = 0; item < order.size(); ++item) {
       const std::size_t cell = order[item];
+      if (capped[cell]) continue;
       if (split[cell]) {
         // Try the centre split; where a piece would be inverted (thin cells with a warped
         // face), undo it and, if allowed, keep the cell and cap its outer quads instead.
@@ -360,7 +403,7 @@ InterfaceResult split_interface(const MixedMesh& mesh, const OuterLayer& layer,
           }
           out.add_cell(type, mesh.cell(type, cell), block.regions[cell]);
           cap_cell(type, cell, mesh.cell(type, cell), outer_faces[cell], block.regions[cell], options,
-                   result);
+                   options.cap_height, result);
         }
         continue;
       }

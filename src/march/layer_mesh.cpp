@@ -134,7 +134,10 @@ void add_boundary_faces(const Front& front, const MarchOptions& options, Boundar
       mesh.add_face(f.split ? FaceType::triangle : type, bottom.data(),
                     mesh.marker(front.patch_names[static_cast<std::size_t>(f.patch)]));
     }
-    mesh.add_face(type, top.data(), hull);
+    // The tops of a sheet's columns are hull_side faces, as its free-edge sides: the
+    // interface caps their cells rather than splitting them (InterfaceOptions::
+    // capped_marker), since a sheet's cells are as long as its streamwise cells.
+    mesh.add_face(type, top.data(), f.wall ? hull : mesh.marker(options.hull_side_marker));
   }
   // Sides along free edges of the front.
   for (const FreeEdge& edge : front.free_edges) {

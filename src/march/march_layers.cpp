@@ -109,6 +109,9 @@ void check_options(const MarchOptions& options) {
   if (options.layer_solve != LayerSolve::sweeps && options.layer_solve != LayerSolve::sparse)
     throw Error("march: unknown layer solve " + std::to_string(static_cast<int>(options.layer_solve)));
   if (options.step_reductions < 0) throw Error("march: step reductions must be >= 0");
+  if (!(options.wake_spread_degrees >= 0.0 && options.wake_spread_degrees < 45.0))
+    throw Error("march: wake spread must lie in [0, 45) degrees, got " +
+                std::to_string(options.wake_spread_degrees));
   if (options.direction_smoothing_passes < 0) throw Error("march: direction smoothing passes must be >= 0");
   if (!(options.maximum_turn_degrees >= 0.0 && options.maximum_turn_degrees <= 180.0))
     throw Error("march: maximum turn per layer must lie in [0, 180] degrees, got " +
@@ -120,6 +123,19 @@ std::string scientific(double value) {
   stream.precision(2);
   stream << std::scientific << value;
   return stream.str();
+}
+
+// The points of the lines that start on a wall and also on a sheet (where a sheet
+// leaves the wall: a trailing edge), once per sheet face corner.
+std::vector<Vector3> trailing_edge_points(const Front& front, const std::vector<Vector3>& points,
+                                          const std::vector<char>& on_wall) {
+  std::vector<Vector3> attachment;
+  for (const FrontFace& f : front.faces)
+    if (!f.wall)
+      for (int k = 0; k < f.corner_count; ++k)
+        if (on_wall[static_cast<std::size_t>(f.columns[static_cast<std::size_t>(k)])])
+          attachment.push_back(points[static_cast<std::size_t>(f.columns[static_cast<std::size_t>(k)])]);
+  return attachment;
 }
 
 // Outward conormals (in the surface, across the edge) of the free edges at a sheet's
@@ -134,12 +150,7 @@ std::string scientific(double value) {
 // orthonormal basis of its conormals (empty for most lines).
 std::vector<std::vector<Vector3>> end_conormals(const Front& front, const std::vector<Vector3>& points,
                                                 const std::vector<char>& on_wall) {
-  std::vector<Vector3> attachment;
-  for (const FrontFace& f : front.faces)
-    if (!f.wall)
-      for (int k = 0; k < f.corner_count; ++k)
-        if (on_wall[static_cast<std::size_t>(f.columns[static_cast<std::size_t>(k)])])
-          attachment.push_back(points[static_cast<std::size_t>(f.columns[static_cast<std::size_t>(k)])]);
+  const std::vector<Vector3> attachment = trailing_edge_points(front, points, on_wall);
   std::vector<std::vector<Vector3>> conormals(points.size());
   if (attachment.empty()) return conormals;
   const double facing = std::cos(M_PI / 6.0);
@@ -188,6 +199,23 @@ Vector3 keep_in_sheet_end(const Vector3& from, const Vector3& to, const std::vec
   return from + (length / kept) * step;
 }
 
+// Per line, the distance of its surface point from the nearest line that starts on a
+// wall and also on a sheet (a trailing-edge line); 0 on wall lines and everywhere when
+// there is no sheet.
+std::vector<double> distance_from_wall_lines(const Front& front, const std::vector<Vector3>& points,
+                                             const std::vector<char>& on_wall) {
+  const std::vector<Vector3> attachment = trailing_edge_points(front, points, on_wall);
+  std::vector<double> distance(points.size(), 0.0);
+  if (attachment.empty()) return distance;
+  for (std::size_t c = 0; c < points.size(); ++c) {
+    if (on_wall[c]) continue;
+    double nearest = (points[c] - attachment.front()).squaredNorm();
+    for (const Vector3& point : attachment) nearest = std::min(nearest, (points[c] - point).squaredNorm());
+    distance[c] = std::sqrt(nearest);
+  }
+  return distance;
+}
+
 }  // namespace
 
 BoundaryLayer march_layers(const SurfaceMesh& surface, const MarchOptions& options, const Log* log) {
@@ -223,6 +251,13 @@ BoundaryLayer march_layers(const SurfaceMesh& surface, const MarchOptions& optio
       for (int k = 0; k < f.corner_count; ++k)
         on_wall[static_cast<std::size_t>(f.columns[static_cast<std::size_t>(k)])] = 1;
   const std::vector<std::vector<Vector3>> conormals = end_conormals(front, current, on_wall);
+  // Wake lines thicken and relax their growth downstream (spacing.hpp, wake_layer_steps).
+  std::vector<std::vector<double>> line_steps(column_count);
+  {
+    const std::vector<double> distance = distance_from_wall_lines(front, current, on_wall);
+    for (std::size_t c = 0; c < column_count; ++c)
+      line_steps[c] = wake_layer_steps(steps, distance[c], options.wake_spread_degrees);
+  }
   std::vector<Vector3> direction(column_count, Vector3::UnitZ());
   std::vector<char> junction_line(column_count, 0);
   for (const march_detail::Junction& junction : front.junctions)
@@ -260,7 +295,8 @@ BoundaryLayer march_layers(const SurfaceMesh& surface, const MarchOptions& optio
 
     // Predictor: the layer normal, blended with the previous marching direction.
     const double memory = smoothed && layer > 0 ? options.direction_memory : 0.0;
-    std::vector<double> step(column_count, steps[static_cast<std::size_t>(layer)]);
+    std::vector<double> step(column_count);
+    for (std::size_t c = 0; c < column_count; ++c) step[c] = line_steps[c][static_cast<std::size_t>(layer)];
     std::vector<Vector3> predicted_direction(column_count);
     for (std::size_t c = 0; c < column_count; ++c) {
       const Vector3 before = unit_or(current[c] - previous[c], normal[c]);

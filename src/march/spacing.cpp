@@ -77,4 +77,40 @@ std::vector<double> layer_steps(const SpacingOptions& options) {
   return steps;
 }
 
+std::vector<double> wake_layer_steps(const std::vector<double>& wall_steps, double distance,
+                                     double spread_degrees) {
+  if (!(distance >= 0.0) || !std::isfinite(distance))
+    throw Error("march: wake distance must be finite and >= 0, got " + number(distance));
+  if (!(spread_degrees >= 0.0 && spread_degrees < 45.0))
+    throw Error("march: wake spread must lie in [0, 45) degrees, got " + number(spread_degrees));
+  double thickness = 0.0;
+  for (double step : wall_steps) {
+    if (!(step > 0.0) || !std::isfinite(step))
+      throw Error("march: wall steps must be positive, got " + number(step));
+    thickness += step;
+  }
+  // The wedge's added thickness in wall thicknesses, x, starts as x^2 / (x + 1): flat at
+  // the trailing edge, so the lines next to it (and the wing's cells that share their
+  // nodes) march as the wall's do, and x - 1 downstream.
+  const double wedge = distance * std::tan(spread_degrees * M_PI / 180.0) / thickness;
+  const double spread = wedge * wedge / (wedge + 1.0);
+  if (spread == 0.0 || wall_steps.empty()) return wall_steps;
+  // The blend reaches half way to equal steps where the wedge has added 16 wall
+  // thicknesses: the outer layers stay thick enough for the interface's split, and the
+  // first step grows by at most 1.56 from one wake cell to the next (streamwise cells
+  // growing by 1.2, docs/march.md).
+  const double blend = spread / (spread + 16.0);
+  const double count = static_cast<double>(wall_steps.size());
+  std::vector<double> steps(wall_steps.size());
+  double sum = 0.0;
+  for (std::size_t k = 0; k < steps.size(); ++k) {
+    // In logarithms: the share w_k^(1-b) (1/N)^b without underflow for tiny shares.
+    steps[k] = std::exp((1.0 - blend) * std::log(wall_steps[k] / thickness) - blend * std::log(count));
+    sum += steps[k];
+  }
+  const double scale = thickness * (1.0 + spread) / sum;
+  for (double& step : steps) step *= scale;
+  return steps;
+}
+
 }  // namespace mixmesh

@@ -61,9 +61,10 @@ add_test(NAME pipeline_failed_deform_writes_nothing
 set_tests_properties(pipeline_failed_deform_writes_nothing PROPERTIES LABELS regression
                      PASS_REGULAR_EXPRESSION "wing_through_farfield.toml:[0-9]+:[0-9]+: \\[\\[deform\\]\\] 'through': step 1: [0-9]+ cells stay inverted")
 
-# The same on the ONERA M6 case without its wake (cases/pipeline/onera_m6_pitch.toml):
+# The same on the ONERA M6 case with its wake (cases/pipeline/onera_m6_pitch.toml):
 # the mixed mesh and a four-step 3-degree pitch with ARA, the last mesh checked by
-# meshio, VTK and checkMesh. About 10 s for the mesh and 10 s for the check: heavy.
+# meshio, VTK and checkMesh. About 40 s for the mesh and its steps and 10 s for the
+# check: heavy.
 add_test(NAME pipeline_onera_m6_generate_then_deform
          COMMAND mixmesh-cli generate ${PROJECT_SOURCE_DIR}/cases/pipeline/onera_m6_pitch.toml
                  --output-dir ${pipeline_folder}/onera_m6_pitch)

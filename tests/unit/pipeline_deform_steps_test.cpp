@@ -73,6 +73,15 @@ TEST(PipelineDeformSteps, RefusesABatchSweepInsideAStep) {
             "");
 }
 
+// (Not a [[deform]] key, but read by the same reader: the wake's spread angle.)
+TEST(PipelineDeformSteps, MarchWakeSpreadIsReadAndBounded) {
+  config::Document good = config::Document::parse(wing + "[march]\nwake_spread = 2.5\n", "case.toml");
+  EXPECT_EQ(read_generate_options(good).march.wake_spread_degrees, 2.5);
+  EXPECT_NE(error_of(wing + "[march]\nwake_spread = 45.0\n").find("case.toml:7:15: 'march.wake_spread'"),
+            std::string::npos)
+      << error_of(wing + "[march]\nwake_spread = 45.0\n");
+}
+
 // The report is TOML that reads back: a step name with quotes and a backslash is escaped.
 TEST(PipelineDeformSteps, ReportReadsBackWithTheStepNames) {
   std::vector<DeformedMesh> meshes(2);

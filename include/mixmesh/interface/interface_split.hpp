@@ -58,6 +58,20 @@ struct InterfaceOptions {
   // piece's scaled corner Jacobian would fall below this; then the split point is the
   // best one a compass search around the centre finds.
   double centre_quality = 0.1;
+  // Cells with an outer quad tagged with this marker are kept whole and capped, as
+  // below, instead of being split about a centre point. The march tags so the hull faces
+  // of a sheet's layers (a wake's): the tops of its columns and the sides along its free
+  // edges. Those cells are as long as the wake's streamwise cells (0.86 m at the end of
+  // the ONERA M6 wake) and the split point would sit half a layer from faces that long,
+  // so any motion of the mesh that is not affine over that length (a deformation) folds
+  // the pieces; a cap spans its own quad only, its apex a quarter of the quad's shortest
+  // edge out. Hexahedra with a node on another outer face (where the marked hull meets
+  // the rest: a wake's trailing edge, the tip trailing edge) are split as usual. Empty:
+  // every cell with an outer quad is split.
+  std::string capped_marker = "hull_side";
+  // Cap height of those cells, times the quad's shortest edge (a wake's quads are long
+  // and narrow: a higher apex keeps the cap from being flat along the quad).
+  double marked_cap_height = 0.5;
   // A cell whose split would still give an inverted piece (a thin cell with a warped
   // face, e.g. deep in the layers beside a free edge) is kept whole and each of its
   // outer quads gets a pyramid outside it, apex above the quad's centre at cap_height

@@ -60,6 +60,12 @@ struct MarchOptions {
   // the rest of the turn is left to the next layers (the projections into a sheet end or
   // the symmetry plane and the retries of failing columns come after it). 0: no limit.
   double maximum_turn_degrees = 1.0;
+  // Wake sheets: the layers of a wake line thicken downstream like a wedge of this
+  // half-angle (degrees) and their growth relaxes towards equal steps
+  // (wake_layer_steps, with the line's distance from the nearest trailing-edge line);
+  // lines that start on a wall keep the wall's steps. 0: every line keeps the wall's
+  // steps to the sheet's end.
+  double wake_spread_degrees = 6.0;
   // Safety: halve the step of the nodes of a failed cell this many times before the
   // column stops.
   int step_reductions = 3;
@@ -106,7 +112,10 @@ struct MarchReport {
 //                     boundary faces: wall faces (marker = patch name), side faces in
 //                     the symmetry plane, the outer hull (top of every column and the
 //                     sides exposed where a neighbouring column stopped lower) and
-//                     the sides along free edges of the front (wake end, wake tip)
+//                     the sides along free edges of the front (wake end, wake tip):
+//                     outer_hull, except that the hull faces of a sheet's columns (their
+//                     tops and free-edge sides) are hull_side, whose cells the interface
+//                     caps instead of splitting them (InterfaceOptions::capped_marker)
 //   column_points     per marching line: its point per layer (0 = the wall point)
 //   column_node       per marching line: its surface node
 //   column_side       per marching line: 0 wall, +1 above a wake sheet, -1 below

@@ -31,4 +31,21 @@ double first_spacing_from_y_plus(double y_plus, double reynolds_number, double r
 // whose thickness cannot hold the first spacing).
 std::vector<double> layer_steps(const SpacingOptions& options);
 
+// The steps of a line on a wake sheet at `distance` d (m) from the trailing edge, from
+// the N steps of the wall lines (thickness T0): the stack thickens like a wedge of
+// half-angle `spread_degrees` and its growth relaxes towards equal steps, each step's
+// share of the thickness moving geometrically from the wall's share w_k to 1/N:
+//   x = d tan(spread) / T0,  s = x^2 / (x + 1),  T(d) = T0 (1 + s),  b = s / (s + 16),
+//   step_k = T(d) w_k^(1-b) N^(-b) / sum_j w_j^(1-b) N^(-b)
+// s starts flat at the trailing edge (the lines there march as the wall's) and tends to
+// x - 1 (thickness T0 + d tan(spread) - T0 far downstream). A geometric wall stack of
+// growth g stays geometric with growth g^(1-b). At d = 0 and for spread 0 the steps are
+// the wall's. Far downstream the first step tends to T(d) / N: the thin first layers
+// the wall needs do not reach the sheet's free edges, where any deformation of the
+// mesh would fold them (docs/march.md, "Wake layers").
+// Throws mixmesh::Error for a negative distance, a spread outside [0, 45) degrees or
+// non-positive wall steps.
+std::vector<double> wake_layer_steps(const std::vector<double>& wall_steps, double distance,
+                                     double spread_degrees);
+
 }  // namespace mixmesh
