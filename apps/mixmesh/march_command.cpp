@@ -54,8 +54,13 @@ void run_march(const MarchArguments& arguments) {
     if (arguments.keep_invalid) {
       std::filesystem::path kept = arguments.output;
       kept.replace_extension(".INVALID.vtu");
-      write_mesh(layer.mesh, kept);
-      log.warning("wrote the invalid layers to " + kept.string());
+      try {  // the error below is the one to report, not a failed write
+        if (kept.has_parent_path()) std::filesystem::create_directories(kept.parent_path());
+        write_mesh(layer.mesh, kept);
+        log.warning("wrote the invalid layers to " + kept.string());
+      } catch (const std::exception& error) {
+        log.warning(std::string("could not write the invalid layers: ") + error.what());
+      }
     }
     throw Error("march: the layers are invalid, " + arguments.output.string() +
                 " not written: " + validity.summary());

@@ -21,7 +21,7 @@ std::string quoted(const std::string& text) {
         out += "\\t";
         break;
       default:
-        if (static_cast<unsigned char>(character) < 0x20) {
+        if (static_cast<unsigned char>(character) < 0x20 || character == '\x7f') {
           char escape[8];
           std::snprintf(escape, sizeof escape, "\\u%04x", static_cast<unsigned>(character));
           out += escape;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <limits>
 #include <map>
 #include <set>
@@ -229,7 +230,7 @@ void split_cell(CellType type, std::size_t cell, const Index* nodes, unsigned ou
 // Keeps the cell and caps every outer quad with a pyramid outside it, apex above the
 // quad's centre at cap_height × its shortest edge; the caps' sides join the hull.
 void cap_cell(CellType type, std::size_t cell, const Index* nodes, unsigned outer_faces, int region,
-              const InterfaceOptions& options, double cap_height, InterfaceResult& result) {
+              const InterfaceOptions& options, double cap_height, bool split_tried, InterfaceResult& result) {
   MixedMesh& out = result.mesh;
   const CellDescriptor& shape = descriptor(type);
   for (int face = 0; face < shape.face_count; ++face) {
@@ -263,15 +264,17 @@ void cap_cell(CellType type, std::size_t cell, const Index* nodes, unsigned oute
             .norm(),
         (out.points[static_cast<std::size_t>(corners[3])] - out.points[static_cast<std::size_t>(corners[1])])
             .norm());
-    for (double height = cap_height * shortest; !cell_shape(CellType::pyramid, out.points, pyramid).valid() &&
+    // (A quad with an edge of zero length gets no cap: its height would stay zero.)
+    for (double height = cap_height * shortest; height > 0.0 &&
+                                                !cell_shape(CellType::pyramid, out.points, pyramid).valid() &&
                                                 2.0 * height <= options.cap_height_limit * diagonal;) {
       height *= 2.0;
       out.points.back() = middle + height * normal;
     }
     if (!cell_shape(CellType::pyramid, out.points, pyramid).valid())
       throw Error("interface: " + std::string(name(type)) + " " + std::to_string(cell) +
-                  " can neither be split about its centre nor capped on face " + std::to_string(face) +
-                  " near " + point_text(middle));
+                  (split_tried ? " can neither be split about its centre nor capped" : " cannot be capped") +
+                  " on face " + std::to_string(face) + " near " + point_text(middle));
     out.add_cell(CellType::pyramid, pyramid, region);
     ++result.pyramids;
     for (int corner = 0; corner < 4; ++corner)
@@ -284,6 +287,10 @@ void cap_cell(CellType type, std::size_t cell, const Index* nodes, unsigned oute
 
 InterfaceResult split_interface(const MixedMesh& mesh, const OuterLayer& layer,
                                 const InterfaceOptions& options) {
+  for (const auto& [option, value] : {std::pair{"cap_height", options.cap_height},
+                                      std::pair{"marked_cap_height", options.marked_cap_height}})
+    if (!(value > 0.0) || !std::isfinite(value))
+      throw Error(std::string("interface: ") + option + " must be > 0, got " + std::to_string(value));
   validate(mesh, layer);
 
   InterfaceResult result;
@@ -362,7 +369,7 @@ InterfaceResult split_interface(const MixedMesh& mesh, const OuterLayer& layer,
     for (std::size_t cell : order)
       if (capped[cell])
         cap_cell(type, cell, mesh.cell(type, cell), outer_faces[cell], block.regions[cell], options,
-                 options.marked_cap_height, result);
+                 options.marked_cap_height, false, result);
     // The split points, found side by side: each search evaluates hundreds of piece
     // shapes on the thin cells of free edges, and depends on its own cell alone.
     std::vector<SplitChoice> choices(order.size());
@@ -403,7 +410,7 @@ InterfaceResult split_interface(const MixedMesh& mesh, const OuterLayer& layer,
           }
           out.add_cell(type, mesh.cell(type, cell), block.regions[cell]);
           cap_cell(type, cell, mesh.cell(type, cell), outer_faces[cell], block.regions[cell], options,
-                   options.cap_height, result);
+                   options.cap_height, true, result);
         }
         continue;
       }

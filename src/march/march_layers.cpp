@@ -251,12 +251,13 @@ BoundaryLayer march_layers(const SurfaceMesh& surface, const MarchOptions& optio
       for (int k = 0; k < f.corner_count; ++k)
         on_wall[static_cast<std::size_t>(f.columns[static_cast<std::size_t>(k)])] = 1;
   const std::vector<std::vector<Vector3>> conormals = end_conormals(front, current, on_wall);
-  // Wake lines thicken and relax their growth downstream (spacing.hpp, wake_layer_steps).
-  std::vector<std::vector<double>> line_steps(column_count);
-  {
+  // Wake lines thicken and relax their growth downstream (spacing.hpp, wake_layer_steps);
+  // only lines off the wall keep their own steps (empty: the wall's).
+  std::vector<std::vector<double>> wake_steps(column_count);
+  if (options.wake_spread_degrees > 0.0) {
     const std::vector<double> distance = distance_from_wall_lines(front, current, on_wall);
     for (std::size_t c = 0; c < column_count; ++c)
-      line_steps[c] = wake_layer_steps(steps, distance[c], options.wake_spread_degrees);
+      if (!on_wall[c]) wake_steps[c] = wake_layer_steps(steps, distance[c], options.wake_spread_degrees);
   }
   std::vector<Vector3> direction(column_count, Vector3::UnitZ());
   std::vector<char> junction_line(column_count, 0);
@@ -296,7 +297,8 @@ BoundaryLayer march_layers(const SurfaceMesh& surface, const MarchOptions& optio
     // Predictor: the layer normal, blended with the previous marching direction.
     const double memory = smoothed && layer > 0 ? options.direction_memory : 0.0;
     std::vector<double> step(column_count);
-    for (std::size_t c = 0; c < column_count; ++c) step[c] = line_steps[c][static_cast<std::size_t>(layer)];
+    for (std::size_t c = 0; c < column_count; ++c)
+      step[c] = (wake_steps[c].empty() ? steps : wake_steps[c])[static_cast<std::size_t>(layer)];
     std::vector<Vector3> predicted_direction(column_count);
     for (std::size_t c = 0; c < column_count; ++c) {
       const Vector3 before = unit_or(current[c] - previous[c], normal[c]);

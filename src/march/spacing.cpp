@@ -89,12 +89,13 @@ std::vector<double> wake_layer_steps(const std::vector<double>& wall_steps, doub
       throw Error("march: wall steps must be positive, got " + number(step));
     thickness += step;
   }
+  if (wall_steps.empty()) return wall_steps;
   // The wedge's added thickness in wall thicknesses, x, starts as x^2 / (x + 1): flat at
   // the trailing edge, so the lines next to it (and the wing's cells that share their
   // nodes) march as the wall's do, and x - 1 downstream.
   const double wedge = distance * std::tan(spread_degrees * M_PI / 180.0) / thickness;
   const double spread = wedge * wedge / (wedge + 1.0);
-  if (spread == 0.0 || wall_steps.empty()) return wall_steps;
+  if (spread == 0.0) return wall_steps;
   // The blend reaches half way to equal steps where the wedge has added 16 wall
   // thicknesses: the outer layers stay thick enough for the interface's split, and the
   // first step grows by at most 1.56 from one wake cell to the next (streamwise cells

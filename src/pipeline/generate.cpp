@@ -119,7 +119,11 @@ GenerateResult generate_from_surface(const SurfaceMesh& surface, const GenerateO
   const InterfaceResult interface = run_stage("interface", report, [&] {
     const OuterLayer outer = pipeline_detail::outer_layer(
         layers.mesh, {options.march.outer_hull_marker, options.march.hull_side_marker});
-    return split_interface(layers.mesh, outer, options.interface);
+    InterfaceOptions interface_options = options.interface;
+    // The cells the march tagged for capping, under whatever name it tagged them.
+    if (!interface_options.capped_marker.empty())
+      interface_options.capped_marker = options.march.hull_side_marker;
+    return split_interface(layers.mesh, outer, interface_options);
   });
   log.info("interface: " + seconds_text(report.stages.back().seconds) + ", " +
            std::to_string(interface.pyramids) + " pyramids, " + std::to_string(interface.tetrahedra) +

@@ -8,7 +8,7 @@ set(march_wake_output ${CMAKE_CURRENT_BINARY_DIR}/march_wake_deform)
 file(MAKE_DIRECTORY ${march_wake_output})
 
 add_test(NAME march_wake_deform
-         COMMAND $<TARGET_FILE:mixmesh-cli> generate ${PROJECT_SOURCE_DIR}/tests/regression/march_wake_deform.toml
+         COMMAND $<TARGET_FILE:mixmesh-cli> generate ${CMAKE_CURRENT_LIST_DIR}/march_wake_deform.toml
                  --output-dir ${march_wake_output})
 set_tests_properties(march_wake_deform PROPERTIES LABELS regression FIXTURES_SETUP march_wake_deform
                      FAIL_REGULAR_EXPRESSION "faces stopped at layer")

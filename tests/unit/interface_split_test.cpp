@@ -346,3 +346,40 @@ TEST(InterfaceSplit, SplitIsTheSameOnOneThreadAndOnMany) {
   EXPECT_EQ(parallel.hull, serial.hull);
   EXPECT_GT(parallel.mesh.points.size(), input.points.size() + 24 * 24 - 1);
 }
+
+// Cells whose outer quad carries capped_marker keep their shape and get a cap; a
+// hexahedron that also touches an outer face without it is split as usual. A 4 × 1
+// row: the tops of cells 2 and 3 are marked, cell 2 shares nodes with cell 1's plain
+// top, so only cell 3 is capped. The hull stays closed round the row's footprint.
+TEST(InterfaceSplit, CellsOfMarkedOuterQuadsAreCappedNotSplit) {
+  MixedMesh input = hexahedron_block(4, 1, 1, [](const Vector3& point) { return point; });
+  const int marked = input.marker("hull_side");
+  for (std::size_t face = 0; face < input.face_count(FaceType::quad); ++face) {
+    const Index* nodes = input.face(FaceType::quad, face);
+    bool top = true;
+    double x = 0.0;
+    for (int corner = 0; corner < 4; ++corner) {
+      top = top && input.points[static_cast<std::size_t>(nodes[corner])].z() == 1.0;
+      x += 0.25 * input.points[static_cast<std::size_t>(nodes[corner])].x();
+    }
+    if (top && x > 2.0) input.faces(FaceType::quad).markers[face] = marked;
+  }
+  const OuterLayer layer = top_layer(4, 1, 1);
+  const InterfaceResult result = split_interface(input, layer);
+  EXPECT_EQ(result.capped_cells, 1u);
+  EXPECT_EQ(result.centres.size(), 3u);  // cells 0, 1 and 2 split about their centres
+  EXPECT_EQ(result.mesh.cell_count(CellType::hexahedron), 1u);
+  EXPECT_EQ(invalid_cells(result.mesh), 0);
+  EXPECT_TRUE(match_faces(result.mesh).conforming());
+  // 3 split tops of 2 triangles, 1 cap of 4; open only along the footprint's 10 edges.
+  EXPECT_EQ(result.hull.size(), 10u);
+  EXPECT_EQ(hull_free_edges(result.hull).size(), 10u);
+  // Without the marker every cell is split.
+  InterfaceOptions plain;
+  plain.capped_marker.clear();
+  EXPECT_EQ(split_interface(input, layer, plain).capped_cells, 0u);
+  // Cap heights must be positive.
+  InterfaceOptions flat;
+  flat.marked_cap_height = 0.0;
+  EXPECT_THROW(split_interface(input, layer, flat), Error);
+}

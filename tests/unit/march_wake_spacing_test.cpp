@@ -150,8 +150,8 @@ TEST(MarchWakeSpacing, WakeLinesThickenAndWallLinesKeepTheirSteps) {
     }
     EXPECT_GT(wall_lines, 0);
     EXPECT_GT(wake_lines, 0);
-    // 2 chords downstream at 6 degrees the wedge adds 0.21 m to the 0.034 m of the wall
-    // stack: the first step there is over ten times the wall's.
+    // 2 chords downstream at 6 degrees the wedge adds about 0.2 m to the 5.4 mm of the
+    // wall stack: the first step there is about a hundred times the wall's.
     if (spread > 0.0) {
       EXPECT_GT(largest_first, 10.0 * wall.front());
     }

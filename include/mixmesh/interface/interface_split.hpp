@@ -59,25 +59,27 @@ struct InterfaceOptions {
   // best one a compass search around the centre finds.
   double centre_quality = 0.1;
   // Cells with an outer quad tagged with this marker are kept whole and capped, as
-  // below, instead of being split about a centre point. The march tags so the hull faces
-  // of a sheet's layers (a wake's): the tops of its columns and the sides along its free
-  // edges. Those cells are as long as the wake's streamwise cells (0.86 m at the end of
-  // the ONERA M6 wake) and the split point would sit half a layer from faces that long,
-  // so any motion of the mesh that is not affine over that length (a deformation) folds
-  // the pieces; a cap spans its own quad only, its apex a quarter of the quad's shortest
-  // edge out. Hexahedra with a node on another outer face (where the marked hull meets
-  // the rest: a wake's trailing edge, the tip trailing edge) are split as usual. Empty:
-  // every cell with an outer quad is split.
+  // below, instead of being split about a centre point (even with
+  // cap_unsplittable_cells false). The march tags the hull faces of a sheet's layers (a
+  // wake's) with it: the tops of its columns and the sides along free edges, also the
+  // free-edge sides of a wall surface (a plate's edge). A wake's cells are as long as its
+  // streamwise cells (0.86 m at the end of the ONERA M6 wake) and the split point would
+  // sit half a layer from faces that long, so any motion of the mesh that is not affine
+  // over that length (a deformation) folds the pieces; a cap spans its own quad only,
+  // its apex marked_cap_height times the quad's shortest edge out. Hexahedra with a node
+  // on another outer face (where the marked hull meets the rest: a wake's trailing edge,
+  // the tip trailing edge) are split as usual. Empty: every cell with an outer quad is
+  // split. (mixmesh::generate passes the march's hull_side_marker.)
   std::string capped_marker = "hull_side";
   // Cap height of those cells, times the quad's shortest edge (a wake's quads are long
-  // and narrow: a higher apex keeps the cap from being flat along the quad).
+  // and narrow: a higher apex keeps the cap from being flat along the quad); > 0.
   double marked_cap_height = 0.5;
   // A cell whose split would still give an inverted piece (a thin cell with a warped
   // face, e.g. deep in the layers beside a free edge) is kept whole and each of its
   // outer quads gets a pyramid outside it, apex above the quad's centre at cap_height
   // times the quad's shortest edge; false: such a cell is an error.
   bool cap_unsplittable_cells = true;
-  double cap_height = 0.25;
+  double cap_height = 0.25;  // > 0
   // A cap on a twisted quad that is inverted at cap_height is raised (doubling) up to
   // this multiple of the quad's longest diagonal.
   double cap_height_limit = 0.5;
