@@ -316,12 +316,10 @@ InterfaceResult split_interface(const MixedMesh& mesh, const OuterLayer& layer,
   for (const auto& [type, cells] :
        {std::pair{CellType::hexahedron, &layer.hexahedra}, std::pair{CellType::prism, &layer.prisms}})
     for (const OuterCell& outer : *cells) {
-      const LocalFace& local = descriptor(type).faces[static_cast<std::size_t>(outer.outer_face)];
       Index corners[4] = {-1, -1, -1, -1};
-      for (int corner = 0; corner < local.node_count; ++corner)
-        corners[corner] = mesh.cell(type, outer.cell)[local.nodes[static_cast<std::size_t>(corner)]];
-      if (local.node_count == 4 && capped_quads.count(sorted_face_key(corners, 4))) continue;
-      for (int corner = 0; corner < local.node_count; ++corner)
+      const int count = face_nodes(mesh, {type, static_cast<Index>(outer.cell), outer.outer_face}, corners);
+      if (count == 4 && capped_quads.count(sorted_face_key(corners, 4))) continue;
+      for (int corner = 0; corner < count; ++corner)
         plain_hull_node[static_cast<std::size_t>(corners[corner])] = 1;
     }
 
@@ -334,11 +332,9 @@ InterfaceResult split_interface(const MixedMesh& mesh, const OuterLayer& layer,
     for (const OuterCell& outer : *cells) {
       if (outer_faces[outer.cell] == 0u) order.push_back(outer.cell);
       outer_faces[outer.cell] |= 1u << outer.outer_face;
-      const LocalFace& local = descriptor(type).faces[static_cast<std::size_t>(outer.outer_face)];
       Index corners[4] = {-1, -1, -1, -1};
-      for (int corner = 0; corner < local.node_count; ++corner)
-        corners[corner] = mesh.cell(type, outer.cell)[local.nodes[static_cast<std::size_t>(corner)]];
-      hull_faces.insert(sorted_face_key(corners, local.node_count));
+      const int count = face_nodes(mesh, {type, static_cast<Index>(outer.cell), outer.outer_face}, corners);
+      hull_faces.insert(sorted_face_key(corners, count));
     }
     // A cell is split when a quad faces the far field; a prism whose outer faces are
     // triangles passes through and adds them to the hull as they are.
@@ -349,12 +345,9 @@ InterfaceResult split_interface(const MixedMesh& mesh, const OuterLayer& layer,
       bool quad = false;
       for (int face = 0; face < descriptor(type).face_count; ++face) {
         if (!((outer_faces[cell] >> face) & 1u)) continue;
-        const LocalFace& local = descriptor(type).faces[static_cast<std::size_t>(face)];
-        if (local.node_count != 4) continue;
+        Index corners[4] = {-1, -1, -1, -1};
+        if (face_nodes(mesh, {type, static_cast<Index>(cell), face}, corners) != 4) continue;
         quad = true;
-        Index corners[4];
-        for (int corner = 0; corner < 4; ++corner)
-          corners[corner] = mesh.cell(type, cell)[local.nodes[static_cast<std::size_t>(corner)]];
         capped[cell] = capped[cell] || capped_quads.count(sorted_face_key(corners, 4)) > 0;
       }
       const Index* nodes = mesh.cell(type, cell);
@@ -386,28 +379,13 @@ InterfaceResult split_interface(const MixedMesh& mesh, const OuterLayer& layer,
       const std::size_t cell = order[item];
       if (capped[cell]) continue;
       if (split[cell]) {
-        // Try the centre split; where a piece would be inverted (thin cells with a warped
-        // face), undo it and, if allowed, keep the cell and cap its outer quads instead.
-        const std::size_t points = out.points.size(), hull = result.hull.size(),
-                          centres = result.centres.size();
-        const std::size_t pyramids = result.pyramids, tetrahedra = result.tetrahedra;
-        const std::array<std::size_t, 2> blocks = {out.block(CellType::tetrahedron).regions.size(),
-                                                   out.block(CellType::pyramid).regions.size()};
-        try {
+        // The centre split unless no split point keeps every piece valid (thin cells with
+        // a warped face): then, if allowed, the cell stays whole and its outer quads are
+        // capped; if not, split_cell names the inverted piece.
+        if (choices[item].worst > 0.0 || !options.cap_unsplittable_cells) {
           split_cell(type, cell, mesh.cell(type, cell), outer_faces[cell], block.regions[cell], options,
                      choices[item], result);
-        } catch (const Error&) {
-          if (!options.cap_unsplittable_cells) throw;
-          out.points.resize(points);
-          result.hull.resize(hull);
-          result.centres.resize(centres);
-          result.pyramids = pyramids;
-          result.tetrahedra = tetrahedra;
-          for (auto [piece, count] :
-               {std::pair{CellType::tetrahedron, blocks[0]}, std::pair{CellType::pyramid, blocks[1]}}) {
-            out.block(piece).regions.resize(count);
-            out.block(piece).nodes.resize(count * static_cast<std::size_t>(node_count(piece)));
-          }
+        } else {
           out.add_cell(type, mesh.cell(type, cell), block.regions[cell]);
           cap_cell(type, cell, mesh.cell(type, cell), outer_faces[cell], block.regions[cell], options,
                    options.cap_height, true, result);
