@@ -69,7 +69,7 @@ std::vector<Vector3> column_normals(const Front& front, const std::vector<Vector
   // The corner of an unopened split face at each of its two lines is the corner of the
   // quad it opens into: its edge between the lines opens along the difference of their
   // normals from the other faces (one line above the sheet, one below).
-  const std::vector<Vector3> provisional = sum;
+  const std::vector<Vector3> provisional = unopened.empty() ? std::vector<Vector3>() : sum;
   for (std::size_t face : unopened) {
     const FrontFace& f = front.faces[face];
     const auto first = static_cast<std::size_t>(f.columns[0]);
