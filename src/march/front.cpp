@@ -226,6 +226,78 @@ JunctionPlan plan_junction(const SurfaceMesh& surface, const std::vector<Surface
   return plan;
 }
 
+// Closes a sheet's side edges by a wrap face each: the free edges of the sheet that lie
+// neither in the symmetry plane nor at the sheet's downstream end (a wake's tip edge).
+// Without it each layer leaves a side face along the edge as thin as the layer, whose
+// hull the far field could only fill with slivers; with it the layers above and below
+// the sheet meet round the edge (FrontFace::wrap). Downstream is the mean direction from
+// the nodes where the sheet leaves a wall (`attached`) into the sheet faces there; an
+// end edge faces downstream (within 45 degrees), a side edge across it. (Measured from
+// the nearest trailing-edge node instead, the end of a wake behind a swept, tapered
+// wing looked like a side edge where it passes behind the tip.)
+void add_wrap_faces(const SurfaceMesh& surface, const std::vector<char>& attached,
+                    const std::vector<std::array<int, 3>>& node_columns, Front& front) {
+  std::unordered_map<std::uint64_t, int> uses;
+  auto key = [](int a, int b) {
+    return static_cast<std::uint64_t>(std::min(a, b)) << 32 | static_cast<std::uint64_t>(std::max(a, b));
+  };
+  for (const FrontFace& face : front.faces)
+    for (int k = 0; k < face.corner_count; ++k)
+      ++uses[key(face.columns[static_cast<std::size_t>(k)],
+                 face.columns[static_cast<std::size_t>((k + 1) % face.corner_count)])];
+  auto node_of = [&](int column) { return front.column_node[static_cast<std::size_t>(column)]; };
+  auto point_of = [&](int column) -> const Vector3& {
+    return surface.points[static_cast<std::size_t>(node_of(column))];
+  };
+  auto upper_sheet_face = [&](const FrontFace& face) {
+    return !face.wall && front.column_side[static_cast<std::size_t>(face.columns[0])] == +1;
+  };
+  Vector3 downstream = Vector3::Zero();
+  for (const FrontFace& face : front.faces) {
+    if (!upper_sheet_face(face)) continue;
+    Vector3 centre = Vector3::Zero(), attachment = Vector3::Zero();
+    int count = 0;
+    for (int k = 0; k < face.corner_count; ++k) {
+      const int column = face.columns[static_cast<std::size_t>(k)];
+      centre += point_of(column) / face.corner_count;
+      if (attached[static_cast<std::size_t>(node_of(column))]) {
+        attachment += point_of(column);
+        ++count;
+      }
+    }
+    if (count > 0 && count < face.corner_count) downstream += (centre - attachment / count).normalized();
+  }
+  if (downstream.norm() == 0.0) return;  // no sheet leaves a wall
+  downstream.normalize();
+  const double facing = std::cos(M_PI / 4.0);
+  const std::size_t face_count = front.faces.size();
+  for (std::size_t f = 0; f < face_count; ++f) {
+    const FrontFace face = front.faces[f];
+    if (!upper_sheet_face(face)) continue;
+    const int n = face.corner_count;
+    Vector3 area = Vector3::Zero();
+    for (int k = 0; k < n; ++k)
+      area += point_of(face.columns[static_cast<std::size_t>(k)])
+                  .cross(point_of(face.columns[static_cast<std::size_t>((k + 1) % n)]));
+    for (int k = 0; k < n; ++k) {
+      const int above_a = face.columns[static_cast<std::size_t>(k)];
+      const int above_b = face.columns[static_cast<std::size_t>((k + 1) % n)];
+      if (uses[key(above_a, above_b)] != 1) continue;
+      if (front.on_symmetry[static_cast<std::size_t>(above_a)] &&
+          front.on_symmetry[static_cast<std::size_t>(above_b)])
+        continue;
+      const Vector3 conormal = (point_of(above_b) - point_of(above_a)).cross(area).normalized();
+      if (conormal.dot(downstream) >= facing) continue;  // the sheet's end
+      const int below_a = node_columns[static_cast<std::size_t>(node_of(above_a))][0];
+      const int below_b = node_columns[static_cast<std::size_t>(node_of(above_b))][0];
+      if (below_a < 0 || below_b < 0) continue;
+      FrontFace wrap{4, {above_b, above_a, below_a, below_b}, face.patch, false, false};
+      wrap.wrap = true;
+      front.faces.push_back(wrap);
+    }
+  }
+}
+
 }  // namespace
 
 Front build_front(const SurfaceMesh& surface) {
@@ -348,6 +420,10 @@ Front build_front(const SurfaceMesh& surface) {
     }
     front.junctions.push_back(junction);
   }
+  // Where a sheet leaves the wall (trailing-edge nodes): wake nodes of a wall face.
+  std::vector<char> attached(point_count, 0);
+  for (const auto& [node, wall_faces] : wall_at_wake) attached[static_cast<std::size_t>(node)] = 1;
+  add_wrap_faces(surface, attached, node_columns, front);
 
   const std::size_t column_count = front.column_node.size();
   front.column_faces.assign(column_count, {});
@@ -418,17 +494,20 @@ Front build_front(const SurfaceMesh& surface) {
     front.neighbourhood[c] = Neighbourhood::ring;
   }
 
-  // The two lines of a split corner (free columns, whose directions are averaged with
-  // their fans') do not average with each other: one serves the faces above the sheet,
-  // the other those below.
-  for (const Junction& junction : front.junctions) {
-    const FrontFace& split = front.faces[static_cast<std::size_t>(junction.face)];
-    for (int end : {0, 3}) {
-      std::vector<int>& ring =
-          front.ring[static_cast<std::size_t>(split.columns[static_cast<std::size_t>(end)])];
-      const int partner = split.columns[static_cast<std::size_t>(3 - end)];
-      ring.erase(std::remove(ring.begin(), ring.end(), partner), ring.end());
-    }
+  // The two lines of a split corner or a wrap face's node are free columns (their
+  // directions are averaged with their fans') and do not average with each other: one
+  // serves the faces above the sheet, the other those below.
+  for (const FrontFace& face : front.faces) {
+    if (!face.split && !face.wrap) continue;
+    for (const auto& [one, other] : face.wrap ? std::vector<std::pair<int, int>>{{0, 3}, {1, 2}}
+                                              : std::vector<std::pair<int, int>>{{0, 3}})
+      for (const auto& [line, partner] : {std::pair{one, other}, std::pair{other, one}}) {
+        const auto column = static_cast<std::size_t>(face.columns[static_cast<std::size_t>(line)]);
+        std::vector<int>& ring = front.ring[column];
+        ring.erase(std::remove(ring.begin(), ring.end(), face.columns[static_cast<std::size_t>(partner)]),
+                   ring.end());
+        front.neighbourhood[column] = Neighbourhood::free;
+      }
   }
 
   // Structured stencils for the interior nodes of structured patches.

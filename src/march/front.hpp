@@ -28,6 +28,10 @@ struct FrontFace {
   // A wall triangle whose corner at a sheet junction marches on both sheet lines: four
   // columns, corners 3 and 0 start at the same surface node (see Junction).
   bool split = false;
+  // A sheet's side edge closed round its edge (a wake's tip edge): the columns above and
+  // below the sheet at the edge's two nodes, (above b, above a, below a, below b); corners
+  // 0 and 3, and 1 and 2, start at the same surface node, so its first cell is a prism.
+  bool wrap = false;
 };
 
 // Where a wall fan across a sheet (a tip cap) meets the sheet's free edge (the tip
@@ -36,7 +40,8 @@ struct FrontFace {
 // split face) marches on both lines: its first cell has a triangle at the bottom and a
 // quad on top and is cut into pyramids and tetrahedra about a point inside it; every
 // cell above is a hexahedron. The first cell of the gap between the two lines along the
-// sheet's free edge is a prism, so the cut cell stays inside the layers.
+// sheet's free edge is the first cell of that edge's wrap face (FrontFace::wrap), a
+// prism, so the cut cell stays inside the layers.
 struct Junction {
   int face = -1;                     // the split face
   std::array<int, 2> sheet{-1, -1};  // sheet columns next to its corners 0 and 3 along the free edge

@@ -7,23 +7,6 @@
 
 namespace mixmesh::march_detail {
 
-namespace {
-
-// The face turned so that its right-hand normal points away from `inside`.
-std::vector<int> outward(std::vector<int> face, const std::vector<Vector3>& points, const Vector3& inside) {
-  Vector3 normal = Vector3::Zero(), centre = Vector3::Zero();
-  const std::size_t n = face.size();
-  for (std::size_t k = 0; k < n; ++k) {
-    const Vector3& here = points[static_cast<std::size_t>(face[k])];
-    normal += here.cross(points[static_cast<std::size_t>(face[(k + 1) % n])]);
-    centre += here / static_cast<double>(n);
-  }
-  if (normal.dot(centre - inside) < 0.0) std::reverse(face.begin(), face.end());
-  return face;
-}
-
-}  // namespace
-
 std::vector<int> junction_faces(const Front& front, const Junction& junction) {
   const FrontFace& split = front.faces[static_cast<std::size_t>(junction.face)];
   std::vector<int> faces{junction.face};
@@ -53,11 +36,6 @@ JunctionCells junction_cells(const Front& front, const Junction& junction, const
   std::vector<Vector3>& points = result.points;
   points = {bottom[column(0)], bottom[column(1)], bottom[column(2)], top[column(0)],
             top[column(1)],    top[column(2)],    top[column(3)],    Vector3::Zero()};
-  const auto sheet_after_column = static_cast<std::size_t>(junction.sheet[0]);
-  const auto sheet_before_column = static_cast<std::size_t>(junction.sheet[1]);
-  points.push_back(bottom[sheet_after_column]);
-  points.push_back(top[sheet_after_column]);
-  points.push_back(top[sheet_before_column]);
 
   // The cut cell's faces, outward: four quads (pyramid bases) and two triangles. The
   // pieces are cones from the centre over them, so a centre outside the cell gives an
@@ -130,15 +108,6 @@ JunctionCells junction_cells(const Front& front, const Junction& junction, const
   }
   place(best[0], best[1], best[2]);
   cut(result.cells);
-  // The prism's triangle (0, 1, 2) is outward: (t, D, A), the cut cell's (t, A, D)
-  // turned round, so the prism lies on the other side of it.
-  result.cells.push_back(
-      {CellType::prism, {wall_corner, top_before, top_after, sheet_wall, sheet_before, sheet_after}});
-  const Vector3 inside = (points[wall_corner] + points[top_after] + points[top_before] + points[sheet_wall] +
-                          points[sheet_after] + points[sheet_before]) /
-                         6.0;
-  result.hull_faces.push_back(outward({sheet_wall, sheet_after, sheet_before}, points, inside));
-  result.hull_faces.push_back(outward({top_after, top_before, sheet_before, sheet_after}, points, inside));
   return result;
 }
 

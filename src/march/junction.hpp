@@ -3,7 +3,8 @@
 // on top (A and D both start at t). No single hexahedron, prism or pyramid has those
 // faces, so it is cut about its centre X into a pyramid on each of its four quads and
 // a tetrahedron on each of its two triangles. The gap between the two sheet lines along
-// the sheet's free edge starts with the prism (t, A, D | w, W_A, W_D).
+// the sheet's free edge is closed by the wrap face there (front.hpp), whose first cell,
+// the prism (t, A, D | w, W_A, W_D), shares the cut cell's triangle (t, A, D).
 #pragma once
 
 #include <vector>
@@ -21,10 +22,7 @@ enum JunctionPoint : int {
   top_a = 4,        // top of corner 1
   top_b = 5,        // top of corner 2
   top_before = 6,   // D (line of corner 3)
-  centre = 7,       // X
-  sheet_wall = 8,   // w, the sheet's free-edge node next to t
-  sheet_after = 9,  // top of the sheet line on corner 0's side
-  sheet_before = 10
+  centre = 7        // X
 };
 
 struct JunctionCell {
@@ -34,10 +32,7 @@ struct JunctionCell {
 
 struct JunctionCells {
   std::vector<Vector3> points;      // indexed by JunctionPoint
-  std::vector<JunctionCell> cells;  // 4 pyramids, 2 tetrahedra, 1 prism
-  // Boundary faces of the prism towards the far field, outward: its triangle at the
-  // sheet's free edge and its quad between the two lines' tops.
-  std::vector<std::vector<int>> hull_faces;
+  std::vector<JunctionCell> cells;  // 4 pyramids, 2 tetrahedra
 };
 
 // The cells between layer 0 (`bottom`) and layer 1 (`top`), positions per column.
@@ -48,8 +43,7 @@ JunctionCells junction_cells(const Front& front, const Junction& junction, const
 bool junction_valid(const JunctionCells& cells);
 
 // The faces whose first cells meet at the junction: the split face first, then the sheet
-// faces on the free edge from its node to the sheet columns (the prism between the two
-// sheet lines shares a face with each).
+// faces and the wrap face on the free edge from its node to the sheet columns.
 std::vector<int> junction_faces(const Front& front, const Junction& junction);
 
 // The junction whose split face is `face`, or nullptr.

@@ -7,6 +7,8 @@
 #include <tbb/parallel_invoke.h>
 
 #include <algorithm>
+#include <array>
+#include <utility>
 
 #include "junction.hpp"
 #include "mixmesh/mesh/cell_geometry.hpp"
@@ -42,6 +44,12 @@ CellType swept_cell(const Front& front, int face, const std::vector<Vector3>& bo
   const FrontFace& f = front.faces[static_cast<std::size_t>(face)];
   auto column = [&](int k) { return static_cast<std::size_t>(f.columns[static_cast<std::size_t>(k)]); };
   points.clear();
+  if (f.wrap && bottom[column(0)] == bottom[column(3)]) {
+    // The first cell of a wrap face: the prism of layer_mesh.cpp, add_swept_cell.
+    constexpr std::array<std::pair<int, int>, 6> corners{{{0, 0}, {0, 1}, {3, 1}, {1, 0}, {1, 1}, {2, 1}}};
+    for (const auto& [k, level] : corners) points.push_back((level == 0 ? bottom : top)[column(k)]);
+    return CellType::prism;
+  }
   if (f.corner_count == 4) {
     for (int k = 0; k < 4; ++k) points.push_back(bottom[column(k)]);
     for (int k = 0; k < 4; ++k) points.push_back(top[column(k)]);
@@ -60,7 +68,7 @@ std::vector<int> invalid_cells(const Front& front, const std::vector<int>& faces
     const FrontFace& f = front.faces[static_cast<std::size_t>(faces[n])];
     if (f.split &&
         bottom[static_cast<std::size_t>(f.columns[0])] == bottom[static_cast<std::size_t>(f.columns[3])]) {
-      // The first cell of a split face: its cut pieces and the prism between the sheet lines.
+      // The first cell of a split face: its cut pieces.
       const Junction* junction = junction_of(front, faces[n]);
       bad[n] = junction == nullptr || !junction_valid(junction_cells(front, *junction, bottom, top));
       return;

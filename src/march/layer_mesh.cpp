@@ -23,32 +23,27 @@ std::array<Index, 4> side_face(const Front& front, const BoundaryLayer& result, 
 
 // Global point numbers of the junction's local points (junction.hpp) between layers 0
 // and 1; the centre is -1 (it is a new point), and the cells computed from the mesh.
-std::array<Index, 11> junction_indices(const Front& front, const Junction& junction,
-                                       const BoundaryLayer& result, JunctionCells& cells) {
+std::array<Index, 8> junction_indices(const Front& front, const Junction& junction, const BoundaryLayer& result,
+                                      JunctionCells& cells) {
   const FrontFace& f = front.faces[static_cast<std::size_t>(junction.face)];
-  const std::array<int, 6> used{f.columns[0], f.columns[1],      f.columns[2],
-                                f.columns[3], junction.sheet[0], junction.sheet[1]};
   std::vector<Vector3> bottom(result.column_points.size(), Vector3::Zero()), top = bottom;
-  for (int c : used) {
+  for (int k = 0; k < 4; ++k) {
+    const int c = f.columns[static_cast<std::size_t>(k)];
     bottom[static_cast<std::size_t>(c)] =
         result.mesh.points[static_cast<std::size_t>(column_point(result, c, 0))];
-    top[static_cast<std::size_t>(c)] =
-        result.mesh.points[static_cast<std::size_t>(column_point(result, c, 1))];
+    top[static_cast<std::size_t>(c)] = result.mesh.points[static_cast<std::size_t>(column_point(result, c, 1))];
   }
   cells = junction_cells(front, junction, bottom, top);
-  return {column_point(result, f.columns[0], 0),      column_point(result, f.columns[1], 0),
-          column_point(result, f.columns[2], 0),      column_point(result, f.columns[0], 1),
-          column_point(result, f.columns[1], 1),      column_point(result, f.columns[2], 1),
-          column_point(result, f.columns[3], 1),      -1,
-          column_point(result, junction.sheet[0], 0), column_point(result, junction.sheet[0], 1),
-          column_point(result, junction.sheet[1], 1)};
+  return {column_point(result, f.columns[0], 0), column_point(result, f.columns[1], 0),
+          column_point(result, f.columns[2], 0), column_point(result, f.columns[0], 1),
+          column_point(result, f.columns[1], 1), column_point(result, f.columns[2], 1),
+          column_point(result, f.columns[3], 1), -1};
 }
 
-// The first cells of a split face: the pieces of its cut cell about a new centre point
-// and the prism between the sheet lines.
+// The first cell of a split face: the pieces of its cut cell about a new centre point.
 void add_junction_cells(const Front& front, const Junction& junction, BoundaryLayer& result) {
   JunctionCells cells;
-  std::array<Index, 11> global = junction_indices(front, junction, result, cells);
+  std::array<Index, 8> global = junction_indices(front, junction, result, cells);
   global[centre] = static_cast<Index>(result.mesh.points.size());
   result.mesh.points.push_back(cells.points[centre]);
   const int patch = front.faces[static_cast<std::size_t>(junction.face)].patch;
@@ -56,33 +51,21 @@ void add_junction_cells(const Front& front, const Junction& junction, BoundaryLa
     std::vector<Index> nodes;
     for (int local : cell.nodes) nodes.push_back(global[static_cast<std::size_t>(local)]);
     result.mesh.add_cell(cell.type, nodes.data(), patch);
-    if (cell.type == CellType::prism) {
-      result.prism_face.push_back(junction.face);
-      result.prism_layer.push_back(0);
-    } else if (cell.type == CellType::pyramid) {
-      result.pyramid_face.push_back(junction.face);
-    } else {
-      result.tetrahedron_face.push_back(junction.face);
-    }
+    (cell.type == CellType::pyramid ? result.pyramid_face : result.tetrahedron_face).push_back(junction.face);
   }
 }
 
-// True for the side faces in layer 0 that the junction's cells replace: the split
-// face's collapsed edge and the sheet's free edges at its two lines.
-bool replaced_by_junction(const Front& front, const BoundaryLayer& result, const FreeEdge& edge) {
-  const FrontFace& f = front.faces[static_cast<std::size_t>(edge.face)];
-  const int u = f.columns[static_cast<std::size_t>(edge.corner)];
-  const int v = f.columns[static_cast<std::size_t>((edge.corner + 1) % f.corner_count)];
-  for (const Junction& junction : front.junctions) {
-    if (result.face_layers[static_cast<std::size_t>(junction.face)] == 0) continue;  // no junction cells
-    const FrontFace& split = front.faces[static_cast<std::size_t>(junction.face)];
-    const std::array<std::array<int, 2>, 3> edges{{{split.columns[3], split.columns[0]},
-                                                   {split.columns[0], junction.sheet[0]},
-                                                   {split.columns[3], junction.sheet[1]}}};
-    for (const auto& pair : edges)
-      if ((u == pair[0] && v == pair[1]) || (u == pair[1] && v == pair[0])) return true;
+// Adds a side face; one whose first two (or last two) nodes coincide, where the two
+// lines of a split or wrap face start at one point, is the triangle of the others.
+void add_side_face(MixedMesh& mesh, const std::array<Index, 4>& nodes, int marker) {
+  if (nodes[0] == nodes[1] || nodes[2] == nodes[3]) {
+    const std::array<Index, 3> triangle =
+        nodes[0] == nodes[1] ? std::array<Index, 3>{nodes[0], nodes[2], nodes[3]}
+                             : std::array<Index, 3>{nodes[0], nodes[1], nodes[2]};
+    mesh.add_face(FaceType::triangle, triangle.data(), marker);
+    return;
   }
-  return false;
+  mesh.add_face(FaceType::quad, nodes.data(), marker);
 }
 
 }  // namespace
@@ -97,6 +80,16 @@ void add_swept_cell(const Front& front, int face, int layer, BoundaryLayer& resu
   auto at = [&](int k, int level) {
     return column_point(result, f.columns[static_cast<std::size_t>(k)], level);
   };
+  if (f.wrap && at(0, layer) == at(3, layer)) {
+    // The first cell of a wrap face (above b, above a, below a, below b): a prism between
+    // its triangles at b and at a, the one at b first (VTK: turned away from the other).
+    const std::array<Index, 6> nodes{at(0, layer), at(0, layer + 1), at(3, layer + 1),
+                                     at(1, layer), at(1, layer + 1), at(2, layer + 1)};
+    result.mesh.add_cell(CellType::prism, nodes.data(), f.patch);
+    result.prism_face.push_back(face);
+    result.prism_layer.push_back(layer);
+    return;
+  }
   if (f.corner_count == 4) {
     const std::array<Index, 8> nodes{at(0, layer),     at(1, layer),     at(2, layer),     at(3, layer),
                                      at(0, layer + 1), at(1, layer + 1), at(2, layer + 1), at(3, layer + 1)};
@@ -147,24 +140,8 @@ void add_boundary_faces(const Front& front, const MarchOptions& options, Boundar
     const bool symmetry =
         front.on_symmetry[static_cast<std::size_t>(u)] && front.on_symmetry[static_cast<std::size_t>(v)];
     const int marker = mesh.marker(symmetry ? options.symmetry_marker : options.hull_side_marker);
-    const bool junction = replaced_by_junction(front, result, edge);
-    for (int layer = junction ? 1 : 0; layer < result.face_layers[static_cast<std::size_t>(edge.face)];
-         ++layer) {
-      const auto nodes = side_face(front, result, edge.face, edge.corner, layer);
-      mesh.add_face(FaceType::quad, nodes.data(), marker);
-    }
-  }
-  // The junction prisms' faces towards the far field.
-  const int hull_side = mesh.marker(options.hull_side_marker);
-  for (const Junction& junction : front.junctions) {
-    if (result.face_layers[static_cast<std::size_t>(junction.face)] == 0) continue;
-    JunctionCells cells;
-    const std::array<Index, 11> global = junction_indices(front, junction, result, cells);
-    for (const std::vector<int>& face : cells.hull_faces) {
-      std::array<Index, 4> nodes{};
-      for (std::size_t k = 0; k < face.size(); ++k) nodes[k] = global[static_cast<std::size_t>(face[k])];
-      mesh.add_face(face.size() == 4 ? FaceType::quad : FaceType::triangle, nodes.data(), hull_side);
-    }
+    for (int layer = 0; layer < result.face_layers[static_cast<std::size_t>(edge.face)]; ++layer)
+      add_side_face(mesh, side_face(front, result, edge.face, edge.corner, layer), marker);
   }
   // Sides of a column standing above its stopped neighbour belong to the hull.
   for (const SharedEdge& edge : front.shared_edges) {
@@ -173,9 +150,10 @@ void add_boundary_faces(const Front& front, const MarchOptions& options, Boundar
     if (first == second) continue;
     const int taller = first > second ? 0 : 1;
     for (int layer = std::min(first, second); layer < std::max(first, second); ++layer) {
-      const auto nodes = side_face(front, result, edge.faces[static_cast<std::size_t>(taller)],
-                                   edge.corners[static_cast<std::size_t>(taller)], layer);
-      mesh.add_face(FaceType::quad, nodes.data(), hull);
+      add_side_face(mesh,
+                    side_face(front, result, edge.faces[static_cast<std::size_t>(taller)],
+                              edge.corners[static_cast<std::size_t>(taller)], layer),
+                    hull);
     }
   }
 }

@@ -43,7 +43,14 @@ std::vector<Vector3> column_normals(const Front& front, const std::vector<Vector
     const double angle = std::atan2(corner.norm(), out.dot(in));
     sum[column] += weight * angle * unit_or(corner, Vector3::Zero());
   };
-  std::vector<std::size_t> unopened;  // split faces whose two lines still start at one point
+  // Corners with an edge of no length yet (lines of a split or wrap face that start at
+  // one point) wait for the normals the other corners give.
+  struct Unopened {
+    std::size_t face;
+    int corner;
+    double weight;
+  };
+  std::vector<Unopened> unopened;
   for (std::size_t face = 0; face < front.faces.size(); ++face) {
     if (!face_active[face]) continue;
     const FrontFace& f = front.faces[face];
@@ -53,8 +60,6 @@ std::vector<Vector3> column_normals(const Front& front, const std::vector<Vector
     };
     Vector3 area = Vector3::Zero();
     for (int k = 0; k < n; ++k) area += at(k).cross(at(k + 1));
-    const bool opening = angle_weighted && f.split && at(0) == at(3);
-    if (opening) unopened.push_back(face);
     for (int k = 0; k < n; ++k) {
       const auto column = static_cast<std::size_t>(f.columns[static_cast<std::size_t>(k)]);
       const double weight = !f.wall && on_wall[column] ? wake_weight : 1.0;
@@ -62,23 +67,28 @@ std::vector<Vector3> column_normals(const Front& front, const std::vector<Vector
         sum[column] += 0.5 * weight * area;
         continue;
       }
-      if (opening && (k == 0 || k == 3)) continue;
+      if (at(k + 1) == at(k) || at(k - 1) == at(k)) {
+        unopened.push_back({face, k, weight});
+        continue;
+      }
       add_corner(column, weight, at(k + 1) - at(k), at(k - 1) - at(k));
     }
   }
-  // The corner of an unopened split face at each of its two lines is the corner of the
-  // quad it opens into: its edge between the lines opens along the difference of their
-  // normals from the other faces (one line above the sheet, one below).
+  // Such an edge is the edge of the quad it opens into: it opens along the difference of
+  // its two lines' normals from the other faces (one line above the sheet, one below).
   const std::vector<Vector3> provisional = unopened.empty() ? std::vector<Vector3>() : sum;
-  for (std::size_t face : unopened) {
-    const FrontFace& f = front.faces[face];
-    const auto first = static_cast<std::size_t>(f.columns[0]);
-    const auto last = static_cast<std::size_t>(f.columns[3]);
-    const Vector3 opening =
-        unit_or(provisional[last], Vector3::Zero()) - unit_or(provisional[first], Vector3::Zero());
-    const Vector3& wall_point = positions[first];
-    add_corner(first, 1.0, positions[static_cast<std::size_t>(f.columns[1])] - wall_point, opening);
-    add_corner(last, 1.0, -opening, positions[static_cast<std::size_t>(f.columns[2])] - wall_point);
+  for (const Unopened& corner : unopened) {
+    const FrontFace& f = front.faces[corner.face];
+    const int n = f.corner_count;
+    const int k = corner.corner;
+    auto column = [&](int corner) {
+      return static_cast<std::size_t>(f.columns[static_cast<std::size_t>((corner + n) % n)]);
+    };
+    auto edge = [&](int to) -> Vector3 {
+      if (positions[column(to)] != positions[column(k)]) return positions[column(to)] - positions[column(k)];
+      return unit_or(provisional[column(to)], Vector3::Zero()) - unit_or(provisional[column(k)], Vector3::Zero());
+    };
+    add_corner(column(k), corner.weight, edge(k + 1), edge(k - 1));
   }
   std::vector<Vector3> normals(positions.size());
   for (std::size_t c = 0; c < positions.size(); ++c) {
@@ -139,40 +149,34 @@ std::vector<Vector3> trailing_edge_points(const Front& front, const std::vector<
 }
 
 // Outward conormals (in the surface, across the edge) of the free edges at a sheet's
-// downstream end (a wake's end): free sheet edges that face away from the line where the
-// sheet leaves the wall (within 30 degrees of the direction from its nearest node), at
-// columns that start on the sheet only. Such a line keeps out of these directions, so
+// downstream end (a wake's end): the free sheet edges that are left once the side edges
+// have their wrap faces (front.cpp, add_wrap_faces), but for those in the symmetry plane,
+// at columns that start on the sheet only. Such a line keeps out of these directions, so
 // the side faces of the end stay in the surface the edge sweeps along the sheet normal:
 // a plane end gives plane side faces, exact to the last bit. Lines drifting 1e-15 off
 // that plane made the hull there so nearly flat that the far-field tetrahedralisation
-// filled it with slivers of no volume. The sheet's side edges (a wake's tip edge) are
-// left free: their lines turn out round the wing tip with the tip's. Per line, an
-// orthonormal basis of its conormals (empty for most lines).
+// filled it with slivers of no volume. Per line, an orthonormal basis of its conormals
+// (empty for most lines).
 std::vector<std::vector<Vector3>> end_conormals(const Front& front, const std::vector<Vector3>& points,
                                                 const std::vector<char>& on_wall) {
-  const std::vector<Vector3> attachment = trailing_edge_points(front, points, on_wall);
   std::vector<std::vector<Vector3>> conormals(points.size());
-  if (attachment.empty()) return conormals;
-  const double facing = std::cos(M_PI / 6.0);
+  if (std::none_of(on_wall.begin(), on_wall.end(), [](char wall) { return wall != 0; })) return conormals;
   for (const march_detail::FreeEdge& edge : front.free_edges) {
     const FrontFace& f = front.faces[static_cast<std::size_t>(edge.face)];
     const int n = f.corner_count;
-    if (f.wall) continue;
+    if (f.wall || f.wrap) continue;
+    const auto first = static_cast<std::size_t>(f.columns[static_cast<std::size_t>(edge.corner)]);
+    const auto second = static_cast<std::size_t>(f.columns[static_cast<std::size_t>((edge.corner + 1) % n)]);
+    if (front.on_symmetry[first] && front.on_symmetry[second]) continue;
     auto at = [&](int k) -> const Vector3& {
       return points[static_cast<std::size_t>(f.columns[static_cast<std::size_t>((k + n) % n)])];
     };
     Vector3 area = Vector3::Zero();
     for (int k = 0; k < n; ++k) area += at(k).cross(at(k + 1));
     const Vector3 conormal = unit_or((at(edge.corner + 1) - at(edge.corner)).cross(area), Vector3::Zero());
-    const Vector3 middle = 0.5 * (at(edge.corner) + at(edge.corner + 1));
-    Vector3 away = middle - attachment.front();
-    for (const Vector3& point : attachment)
-      if ((middle - point).squaredNorm() < away.squaredNorm()) away = middle - point;
-    if (!(conormal.dot(away) >= facing * away.norm()) || conormal.squaredNorm() == 0.0) continue;
-    for (int k : {edge.corner, (edge.corner + 1) % n}) {
-      const auto column = static_cast<std::size_t>(f.columns[static_cast<std::size_t>(k)]);
+    if (conormal.squaredNorm() == 0.0) continue;
+    for (std::size_t column : {first, second})
       if (!on_wall[column]) conormals[column].push_back(conormal);
-    }
   }
   // Each line's conormals as an orthonormal basis (Gram-Schmidt), once for all layers.
   for (std::vector<Vector3>& column : conormals) {
@@ -308,7 +312,8 @@ BoundaryLayer march_layers(const SurfaceMesh& surface, const MarchOptions& optio
             unit_or(Vector3(predicted_direction[c].x(), 0.0, predicted_direction[c].z()), normal[c]);
     }
     // At a junction the sheet lines next to the split face's lines start parallel to
-    // them, so the prism between the two sheet lines there has two equal triangles.
+    // them, so the prism between the two sheet lines there (the first cell of the wrap
+    // face of the sheet's edge) has two equal triangles.
     if (layer == 0)
       for (const march_detail::Junction& junction : front.junctions)
         for (int end : {0, 1}) {
@@ -427,20 +432,14 @@ BoundaryLayer march_layers(const SurfaceMesh& surface, const MarchOptions& optio
         for (int face : front.column_faces[c])
           if (face_active[static_cast<std::size_t>(face)]) recheck.push_back(face);
       }
-      // A junction's first cells also use the sheet columns next to its split face.
-      if (layer == 0)
-        for (const march_detail::Junction& junction : front.junctions)
-          for (int sheet : junction.sheet)
-            if (touched[static_cast<std::size_t>(sheet)] &&
-                face_active[static_cast<std::size_t>(junction.face)])
-              recheck.push_back(junction.face);
       std::sort(recheck.begin(), recheck.end());
       recheck.erase(std::unique(recheck.begin(), recheck.end()), recheck.end());
       bad = failing(recheck);
     }
-    // A junction's first cells (junction.hpp) need the sheet lines next to the split face:
-    // where a sheet face there stops at the first layer, the split face stops with it. (A
-    // split face that stops alone leaves the sheet faces to close the free edge as usual.)
+    // A junction's cut cell (junction.hpp) is closed by the first cells of the sheet faces
+    // and the wrap face next to it: where one of those stops at the first layer, the split
+    // face stops with it. (A split face that stops alone leaves the others to close the
+    // edge.)
     if (layer == 0 && !bad.empty())
       for (const march_detail::Junction& junction : front.junctions) {
         const std::vector<int> group = march_detail::junction_faces(front, junction);
