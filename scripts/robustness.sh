@@ -89,6 +89,9 @@ min_sj = float(os.environ["MIN_SCALED_JACOBIAN"])
 types = [("tetra", "tet"), ("pyramid", "pyr"), ("wedge", "pri"), ("hexahedron", "hex")]
 
 def first_error(text):
+    for line in text.splitlines():  # the program's own error line first, then anything alarming
+        if re.search(r"error:", line):
+            return line.strip()
     for line in text.splitlines():
         if re.search(r"error|intersect|fail|invalid", line, re.I):
             return line.strip()
