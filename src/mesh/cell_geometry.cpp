@@ -1,6 +1,8 @@
 #include "mixmesh/mesh/cell_geometry.hpp"
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 
 namespace mixmesh {
 
@@ -67,6 +69,29 @@ CellShape cell_shape(CellType type, const std::vector<Vector3>& points, const In
 
 double signed_volume(CellType type, const std::vector<Vector3>& points, const Index* nodes) {
   return cell_shape(type, points, nodes).volume;
+}
+
+double largest_dihedral_degrees(const Vector3& a, const Vector3& b, const Vector3& c, const Vector3& d) {
+  // Unit normals of the faces opposite each vertex, turned away from it. The dihedral
+  // angle at an edge is 180 degrees less the angle between the outward normals of its
+  // two faces, so the largest one belongs to the two normals closest in direction.
+  const std::array<const Vector3*, 4> p{&a, &b, &c, &d};
+  std::array<Vector3, 4> normal;
+  for (int i = 0; i < 4; ++i) {
+    const Vector3& x = *p[static_cast<std::size_t>((i + 1) % 4)];
+    const Vector3& y = *p[static_cast<std::size_t>((i + 2) % 4)];
+    const Vector3& z = *p[static_cast<std::size_t>((i + 3) % 4)];
+    Vector3 n = (y - x).cross(z - x);
+    const double length = n.norm();
+    if (!(length > 0.0)) return 180.0;
+    n /= length;
+    if (n.dot(*p[static_cast<std::size_t>(i)] - x) > 0.0) n = -n;
+    normal[static_cast<std::size_t>(i)] = n;
+  }
+  double closest = -1.0;
+  for (std::size_t i = 0; i < 4; ++i)
+    for (std::size_t j = i + 1; j < 4; ++j) closest = std::max(closest, normal[i].dot(normal[j]));
+  return 180.0 - std::acos(std::clamp(closest, -1.0, 1.0)) * 180.0 / M_PI;
 }
 
 }  // namespace mixmesh

@@ -39,6 +39,12 @@ std::string seconds_text(double seconds) {
   return text;
 }
 
+std::string fixed_text(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.1f", value);
+  return text;
+}
+
 std::vector<std::string> wall_marker_names(const SurfaceMesh& surface) {
   std::vector<std::string> names;
   for (const StructuredPatch& patch : surface.structured) {
@@ -171,6 +177,17 @@ GenerateResult generate_from_surface(const SurfaceMesh& surface, const GenerateO
     return pipeline_detail::assemble(interface.mesh, options.interface.hull_marker, farfield_result,
                                      wall_marker_names(surface), options.output.merge_wall_markers);
   });
+  if (options.slivers.passes > 0) {
+    report.slivers = run_stage("slivers", report, [&] { return remove_slivers(result.mesh, options.slivers); });
+    const SliverReport& slivers = report.slivers;
+    log.info("slivers: " + seconds_text(report.stages.back().seconds) + ", " +
+             std::to_string(slivers.above_target_before) + " -> " + std::to_string(slivers.above_target_after) +
+             " tetrahedra above " + fixed_text(options.slivers.target_dihedral_degrees) +
+             " deg (largest dihedral " + fixed_text(slivers.largest_dihedral_before) + " -> " +
+             fixed_text(slivers.largest_dihedral_after) + " deg), " + std::to_string(slivers.edge_removals) +
+             " edge removals, " + std::to_string(slivers.face_flips) + " face flips, " +
+             std::to_string(slivers.smoothed_points) + " points moved");
+  }
   result.validity = run_stage("validate", report, [&] { return validate(result.mesh); });
   log.info("validate: " + seconds_text(report.stages.back().seconds) + ", " + result.validity.summary());
 

@@ -113,6 +113,21 @@ FarFieldOptions read_farfield_options(config::Section& table) {
   return options;
 }
 
+//   [slivers]
+//   target_dihedral = 160.0    # degrees: tetrahedra above it are flipped / smoothed
+//   passes = 6                 # 0: no sliver removal
+//   maximum_ring = 7
+//   smooth_points = true
+SliverOptions read_sliver_options(config::Section& table) {
+  SliverOptions options;
+  table.read("target_dihedral", options.target_dihedral_degrees, Bounds{90.0, 180.0, false, false});
+  table.read("passes", options.passes, Bounds::at_least(0));
+  table.read("maximum_ring", options.maximum_ring, Bounds::at_least(3));
+  table.read("smooth_points", options.smooth_points);
+  table.finish();
+  return options;
+}
+
 //   [output]
 //   folder = "."               # relative to the working directory
 //   name = "onera_m6"          # default: the config's stem
@@ -150,6 +165,8 @@ GenerateOptions read_generate_options(config::Document& document) {
   options.interface = read_interface_options(interface ? *interface : no_table);
   auto farfield = root.optional_section("farfield");
   options.farfield = read_farfield_options(farfield ? *farfield : no_table);
+  auto slivers = root.optional_section("slivers");
+  options.slivers = read_sliver_options(slivers ? *slivers : no_table);
   auto output = root.optional_section("output");
   options.output = read_output_options(output ? *output : no_table, document.file());
   // The files a step writes: NAME_STEP, or NAME_STEP_0001 … for a sequence.

@@ -31,6 +31,11 @@ inline double tetrahedron_volume6(const Vector3& a, const Vector3& b, const Vect
   return (b - a).cross(c - a).dot(d - a);
 }
 
+// The largest dihedral angle of tetrahedron (a, b, c, d), in degrees: near 180 for a
+// sliver (four nearly coplanar, well-spread points), at most 90 for a tetrahedron with a
+// right-angled corner however it is stretched; 180 for a degenerate one.
+double largest_dihedral_degrees(const Vector3& a, const Vector3& b, const Vector3& c, const Vector3& d);
+
 // Area-weighted normal of a face (Newell's method): length = area for a planar face.
 Vector3 face_area_vector(const std::vector<Vector3>& points, const Index* nodes, int node_count);
 

@@ -19,6 +19,7 @@
 #include "mixmesh/interface/interface_split.hpp"
 #include "mixmesh/march/march_layers.hpp"
 #include "mixmesh/mesh/mixed_mesh.hpp"
+#include "mixmesh/optimize/sliver_removal.hpp"
 #include "mixmesh/quality/validity.hpp"
 #include "mixmesh/surface/surface_config.hpp"
 
@@ -38,13 +39,14 @@ struct GenerateOptions {
   MarchOptions march;
   InterfaceOptions interface;
   FarFieldOptions farfield;
+  SliverOptions slivers;  // the post-pass over the assembled tetrahedra
   OutputOptions output;
   // [[deform]] steps: each deforms the generated mesh (mesh-then-deform pipelines).
   std::vector<deform::DeformStep> deform;
 };
 
 // Reads every table of a generate config ([wing], [surface], [march], [interface],
-// [farfield], [output], [[deform]]); unknown keys and tables are errors with their position.
+// [farfield], [slivers], [output], [[deform]]); unknown keys and tables are errors with their position.
 GenerateOptions read_generate_options(config::Document& document);
 
 // Loads a config file, applies the command line's KEY=VALUE overrides (--set) and
@@ -68,6 +70,7 @@ struct GenerateReport {
   double min_scaled_jacobian = 0.0;
   MarchReport march;
   FarFieldResult farfield_summary;  // counts and hull metric lengths (mesh emptied)
+  SliverReport slivers;
   std::vector<StageTiming> stages;
   double seconds = 0.0;
 };

@@ -1,0 +1,46 @@
+// Sliver removal: a post-pass over the tetrahedra of a mixed mesh (the far field's and
+// the interface's) that flips away tetrahedra with a large dihedral angle and moves
+// free far-field points off them.
+//
+// A sliver is judged by its largest dihedral angle (near 180 degrees): the measure holds
+// for anisotropic tetrahedra, where a stretched but well-aligned tetrahedron has right
+// or acute dihedral angles only, while the scaled Jacobian would call it bad.
+//
+// Operations, each taken only where it raises the smallest value of 180 degrees less
+// the largest dihedral angle over the tetrahedra it replaces:
+//   - edge removal: the tetrahedra round an interior edge (3 to `maximum_ring`) are
+//     replaced by the best triangulation of their ring (3 -> 2, 4 -> 4, ... flips);
+//   - face flip: two tetrahedra sharing a face become three round the segment between
+//     their apexes (2 -> 3);
+//   - point smoothing: a point used by tetrahedra only and on no boundary face moves to
+//     the best of a few trial positions.
+// Faces shared with a pyramid, prism or hexahedron and boundary faces are never
+// removed, and no point of them moves, so the mesh stays conforming with every face
+// and marker it had.
+#pragma once
+
+#include <cstddef>
+
+#include "mixmesh/mesh/mixed_mesh.hpp"
+
+namespace mixmesh {
+
+struct SliverOptions {
+  // Tetrahedra whose largest dihedral angle is above this are worked on.
+  double target_dihedral_degrees = 160.0;
+  int passes = 6;
+  int maximum_ring = 7;  // the largest edge ring removed (tetrahedra round the edge)
+  bool smooth_points = true;
+};
+
+struct SliverReport {
+  std::size_t tetrahedra_before = 0, tetrahedra_after = 0;
+  double largest_dihedral_before = 0.0, largest_dihedral_after = 0.0;  // degrees
+  std::size_t above_target_before = 0, above_target_after = 0;
+  std::size_t edge_removals = 0, face_flips = 0, smoothed_points = 0;
+  int passes = 0;
+};
+
+SliverReport remove_slivers(MixedMesh& mesh, const SliverOptions& options = {});
+
+}  // namespace mixmesh

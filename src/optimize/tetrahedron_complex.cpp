@@ -1,0 +1,135 @@
+#include "tetrahedron_complex.hpp"
+
+#include <algorithm>
+
+#include "mixmesh/mesh/cell_geometry.hpp"
+
+namespace mixmesh::optimize_detail {
+
+namespace {
+
+// Faces of a tetrahedron: the one opposite each vertex.
+constexpr std::array<std::array<int, 3>, 4> opposite{{{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}}};
+
+}  // namespace
+
+std::size_t TetrahedronComplex::FaceHash::operator()(const FaceKey& key) const {
+  std::uint64_t hash = 1469598103934665603ull;
+  for (Index node : key.nodes) hash = (hash ^ static_cast<std::uint64_t>(node)) * 1099511628211ull;
+  return static_cast<std::size_t>(hash);
+}
+
+TetrahedronComplex::FaceKey TetrahedronComplex::key(Index a, Index b, Index c) {
+  FaceKey result{{a, b, c}};
+  std::sort(result.nodes.begin(), result.nodes.end());
+  return result;
+}
+
+TetrahedronComplex::TetrahedronComplex(MixedMesh& mesh) : mesh_(mesh) {
+  const CellBlock& block = mesh.block(CellType::tetrahedron);
+  const std::size_t count = mesh.cell_count(CellType::tetrahedron);
+  around_.resize(mesh.points.size());
+  free_.assign(mesh.points.size(), 1);
+  for (CellType type : {CellType::pyramid, CellType::prism, CellType::hexahedron})
+    for (Index node : mesh.block(type).nodes) free_[static_cast<std::size_t>(node)] = 0;
+  for (FaceType type : all_face_types)
+    for (Index node : mesh.faces(type).nodes) free_[static_cast<std::size_t>(node)] = 0;
+  faces_.reserve(2 * count + 16);
+  bool oriented = false;
+  for (std::size_t t = 0; t < count; ++t) {
+    const Index* n = block.nodes.data() + 4 * t;
+    const Tetrahedron nodes{n[0], n[1], n[2], n[3]};
+    if (!oriented) {
+      const double volume = tetrahedron_volume6(mesh.points[static_cast<std::size_t>(n[0])],
+                                                mesh.points[static_cast<std::size_t>(n[1])],
+                                                mesh.points[static_cast<std::size_t>(n[2])],
+                                                mesh.points[static_cast<std::size_t>(n[3])]);
+      if (volume != 0.0) {
+        orientation_ = volume > 0.0 ? 1.0 : -1.0;
+        oriented = true;
+      }
+    }
+    add(nodes, block.regions.empty() ? 0 : block.regions[t]);
+  }
+}
+
+int TetrahedronComplex::add(const Tetrahedron& nodes, int region) {
+  const int t = static_cast<int>(tetrahedra_.size());
+  tetrahedra_.push_back(nodes);
+  regions_.push_back(region);
+  alive_.push_back(1);
+  for (Index node : nodes) around_[static_cast<std::size_t>(node)].push_back(t);
+  for (const auto& face : opposite) {
+    auto [slot, inserted] = faces_.try_emplace(
+        key(nodes[static_cast<std::size_t>(face[0])], nodes[static_cast<std::size_t>(face[1])],
+            nodes[static_cast<std::size_t>(face[2])]),
+        std::array<int, 2>{-1, -1});
+    (slot->second[0] < 0 ? slot->second[0] : slot->second[1]) = t;
+  }
+  return t;
+}
+
+void TetrahedronComplex::remove(int t) {
+  const Tetrahedron& nodes = tetrahedra_[static_cast<std::size_t>(t)];
+  alive_[static_cast<std::size_t>(t)] = 0;
+  for (Index node : nodes) {
+    std::vector<int>& list = around_[static_cast<std::size_t>(node)];
+    list.erase(std::find(list.begin(), list.end(), t));
+  }
+  for (const auto& face : opposite) {
+    auto slot = faces_.find(key(nodes[static_cast<std::size_t>(face[0])], nodes[static_cast<std::size_t>(face[1])],
+                                nodes[static_cast<std::size_t>(face[2])]));
+    if (slot->second[0] == t) slot->second[0] = slot->second[1];
+    slot->second[1] = -1;
+    if (slot->second[0] < 0) faces_.erase(slot);
+  }
+}
+
+int TetrahedronComplex::neighbour(int t, Index a, Index b, Index c) const {
+  const auto slot = faces_.find(key(a, b, c));
+  if (slot == faces_.end()) return -1;
+  return slot->second[0] == t ? slot->second[1] : slot->second[0];
+}
+
+bool TetrahedronComplex::ring(int t, Index a, Index b, std::vector<Index>& apexes,
+                              std::vector<int>& tetrahedra) const {
+  apexes.clear();
+  tetrahedra.clear();
+  auto others = [&](int cell, std::array<Index, 2>& pair) {
+    int k = 0;
+    for (Index node : tetrahedra_[static_cast<std::size_t>(cell)])
+      if (node != a && node != b) pair[static_cast<std::size_t>(k++)] = node;
+  };
+  std::array<Index, 2> pair{};
+  others(t, pair);
+  apexes.push_back(pair[0]);
+  Index current = pair[1];
+  int cell = t;
+  while (true) {
+    tetrahedra.push_back(cell);
+    if (current == apexes.front()) return true;  // closed
+    if (tetrahedra.size() > 64) return false;
+    apexes.push_back(current);
+    const int next = neighbour(cell, a, b, current);
+    if (next < 0) {
+      apexes.clear();
+      tetrahedra.clear();
+      return false;
+    }
+    others(next, pair);
+    current = pair[0] == current ? pair[1] : pair[0];
+    cell = next;
+  }
+}
+
+void TetrahedronComplex::write_back() {
+  CellBlock block;
+  for (std::size_t t = 0; t < tetrahedra_.size(); ++t) {
+    if (!alive_[t]) continue;
+    block.nodes.insert(block.nodes.end(), tetrahedra_[t].begin(), tetrahedra_[t].end());
+    block.regions.push_back(regions_[t]);
+  }
+  mesh_.block(CellType::tetrahedron) = std::move(block);
+}
+
+}  // namespace mixmesh::optimize_detail

@@ -1,0 +1,68 @@
+// The tetrahedra of a mixed mesh with the adjacency the flips need: which tetrahedra
+// share a face, which use a point, the ring of tetrahedra round an edge. Faces that a
+// single tetrahedron uses (boundary faces, faces shared with other cell types) have no
+// neighbour and are never crossed.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <unordered_map>
+#include <vector>
+
+#include "mixmesh/mesh/mixed_mesh.hpp"
+
+namespace mixmesh::optimize_detail {
+
+using Tetrahedron = std::array<Index, 4>;
+
+class TetrahedronComplex {
+ public:
+  // Tetrahedra of `mesh`, and its points (kept by reference: smoothing moves them).
+  explicit TetrahedronComplex(MixedMesh& mesh);
+
+  std::vector<Vector3>& points() { return mesh_.points; }
+  const std::vector<Vector3>& points() const { return mesh_.points; }
+  std::size_t size() const { return tetrahedra_.size(); }
+  bool alive(int t) const { return alive_[static_cast<std::size_t>(t)] != 0; }
+  const Tetrahedron& nodes(int t) const { return tetrahedra_[static_cast<std::size_t>(t)]; }
+  int region(int t) const { return regions_[static_cast<std::size_t>(t)]; }
+  // +1 or -1: the sign of tetrahedron_volume6 for the mesh's (valid) tetrahedra.
+  double orientation() const { return orientation_; }
+  // Tetrahedra using point p (alive ones only).
+  const std::vector<int>& around(Index p) const { return around_[static_cast<std::size_t>(p)]; }
+  // True for a point no other cell type and no boundary face uses.
+  bool free_point(Index p) const { return free_[static_cast<std::size_t>(p)] != 0; }
+
+  // The tetrahedron across face (a, b, c) from t, or -1.
+  int neighbour(int t, Index a, Index b, Index c) const;
+  // The apexes round edge (a, b), in order, starting in tetrahedron t, and the
+  // tetrahedra between them (tetrahedra[i] has apexes i and i + 1); empty when the
+  // ring does not close (the edge is on a boundary or a face of another cell type).
+  bool ring(int t, Index a, Index b, std::vector<Index>& apexes, std::vector<int>& tetrahedra) const;
+
+  int add(const Tetrahedron& nodes, int region);
+  void remove(int t);
+  // Writes the alive tetrahedra back into the mesh.
+  void write_back();
+
+ private:
+  struct FaceKey {
+    std::array<Index, 3> nodes;
+    bool operator==(const FaceKey& other) const { return nodes == other.nodes; }
+  };
+  struct FaceHash {
+    std::size_t operator()(const FaceKey& key) const;
+  };
+  static FaceKey key(Index a, Index b, Index c);
+
+  MixedMesh& mesh_;
+  std::vector<Tetrahedron> tetrahedra_;
+  std::vector<int> regions_;
+  std::vector<char> alive_;
+  std::vector<std::vector<int>> around_;
+  std::vector<char> free_;
+  std::unordered_map<FaceKey, std::array<int, 2>, FaceHash> faces_;
+  double orientation_ = 1.0;
+};
+
+}  // namespace mixmesh::optimize_detail

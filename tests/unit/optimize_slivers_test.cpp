@@ -1,0 +1,140 @@
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "mixmesh/core/error.hpp"
+#include "mixmesh/mesh/cell_geometry.hpp"
+#include "mixmesh/mesh/face_connectivity.hpp"
+#include "mixmesh/optimize/sliver_removal.hpp"
+
+namespace mixmesh {
+namespace {
+
+// A block of n^3 unit cubes, each cut into six tetrahedra round its main diagonal,
+// every boundary face tagged "wall".
+MixedMesh cube_block(int n) {
+  MixedMesh mesh;
+  auto id = [&](int i, int j, int k) { return static_cast<Index>((k * (n + 1) + j) * (n + 1) + i); };
+  for (int k = 0; k <= n; ++k)
+    for (int j = 0; j <= n; ++j)
+      for (int i = 0; i <= n; ++i) mesh.points.emplace_back(i, j, k);
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        const Index c[8] = {id(i, j, k),         id(i + 1, j, k),         id(i + 1, j + 1, k),
+                            id(i, j + 1, k),     id(i, j, k + 1),         id(i + 1, j, k + 1),
+                            id(i + 1, j + 1, k + 1), id(i, j + 1, k + 1)};
+        // Kuhn's six tetrahedra round the diagonal 0-6.
+        const int paths[6][2] = {{1, 2}, {2, 3}, {3, 7}, {7, 4}, {4, 5}, {5, 1}};
+        for (const auto& path : paths) {
+          Index t[4] = {c[0], c[path[0]], c[path[1]], c[6]};
+          if (tetrahedron_volume6(mesh.points[static_cast<std::size_t>(t[0])],
+                                  mesh.points[static_cast<std::size_t>(t[1])],
+                                  mesh.points[static_cast<std::size_t>(t[2])],
+                                  mesh.points[static_cast<std::size_t>(t[3])]) < 0.0)
+            std::swap(t[1], t[2]);
+          mesh.add_cell(CellType::tetrahedron, t);
+        }
+      }
+  // Boundary faces: faces of one tetrahedron.
+  const int wall = mesh.marker("wall");
+  for (const CellFace& face : match_faces(mesh).boundary) {
+    Index nodes[4];
+    const int count = face_nodes(mesh, face, nodes);
+    mesh.add_face(count == 3 ? FaceType::triangle : FaceType::quad, nodes, wall);
+  }
+  return mesh;
+}
+
+double largest_dihedral(const MixedMesh& mesh, std::size_t& above_160) {
+  double largest = 0.0;
+  above_160 = 0;
+  for (std::size_t t = 0; t < mesh.cell_count(CellType::tetrahedron); ++t) {
+    const Index* n = mesh.cell(CellType::tetrahedron, t);
+    const double angle = largest_dihedral_degrees(
+        mesh.points[static_cast<std::size_t>(n[0])], mesh.points[static_cast<std::size_t>(n[1])],
+        mesh.points[static_cast<std::size_t>(n[2])], mesh.points[static_cast<std::size_t>(n[3])]);
+    largest = std::max(largest, angle);
+    above_160 += angle > 160.0 ? 1 : 0;
+  }
+  return largest;
+}
+
+double total_volume(const MixedMesh& mesh) {
+  double volume = 0.0;
+  for (std::size_t t = 0; t < mesh.cell_count(CellType::tetrahedron); ++t)
+    volume += signed_volume(CellType::tetrahedron, mesh.points, mesh.cell(CellType::tetrahedron, t));
+  return volume;
+}
+
+TEST(LargestDihedral, RightCornerStretchedStaysAtNinetyAndASliverNearsOneEighty) {
+  const Vector3 o(0, 0, 0);
+  EXPECT_NEAR(largest_dihedral_degrees(o, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}), 90.0, 1e-9);
+  EXPECT_NEAR(largest_dihedral_degrees(o, {1000, 0, 0}, {0, 1, 0}, {0, 0, 0.001}), 90.0, 1e-9);
+  // A square with a tiny lift on two opposite corners: two dihedral angles near 180.
+  EXPECT_GT(largest_dihedral_degrees({0, 0, 0}, {1, 0, 1e-3}, {1, 1, 0}, {0, 1, 1e-3}), 179.0);
+  EXPECT_NEAR(largest_dihedral_degrees({0, 0, 0}, {1, 0, 0}, {0.5, std::sqrt(0.75), 0},
+                                       {0.5, std::sqrt(0.75) / 3.0, std::sqrt(2.0 / 3.0)}),
+              std::acos(1.0 / 3.0) * 180.0 / M_PI, 1e-9);
+}
+
+TEST(SliverRemoval, PerturbedBlockLosesItsSliversAndKeepsItsBoundaryAndVolume) {
+  MixedMesh mesh = cube_block(6);
+  // Interior points pushed towards a neighbour's plane make slivers; every cell stays valid.
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> shift(-0.49, 0.49);
+  for (std::size_t p = 0; p < mesh.points.size(); ++p) {
+    Vector3& x = mesh.points[p];
+    if (x.minCoeff() == 0.0 || x.maxCoeff() == 6.0) continue;
+    const Vector3 start = x;
+    x += Vector3(shift(random), shift(random), shift(random));
+    bool valid = true;
+    for (std::size_t t = 0; t < mesh.cell_count(CellType::tetrahedron) && valid; ++t)
+      valid = signed_volume(CellType::tetrahedron, mesh.points, mesh.cell(CellType::tetrahedron, t)) > 0.0;
+    if (!valid) x = start;
+  }
+  std::size_t above_before = 0, above_after = 0;
+  const double before = largest_dihedral(mesh, above_before);
+  ASSERT_GT(above_before, 10u);
+  const std::size_t boundary_faces = mesh.face_count();
+  const double volume = total_volume(mesh);
+
+  const SliverReport report = remove_slivers(mesh, SliverOptions{});
+  const double after = largest_dihedral(mesh, above_after);
+  std::printf("largest dihedral %.2f -> %.2f deg, above 160: %zu -> %zu, %zu edge removals, %zu flips, %zu moves\n",
+              before, after, above_before, above_after, report.edge_removals, report.face_flips,
+              report.smoothed_points);
+  EXPECT_EQ(report.above_target_before, above_before);
+  EXPECT_EQ(report.above_target_after, above_after);
+  EXPECT_LT(after, before);
+  EXPECT_LT(above_after * 4, above_before);
+  EXPECT_NEAR(total_volume(mesh), volume, 1e-9 * volume);
+  for (std::size_t t = 0; t < mesh.cell_count(CellType::tetrahedron); ++t)
+    EXPECT_TRUE(cell_shape(CellType::tetrahedron, mesh.points, mesh.cell(CellType::tetrahedron, t)).valid());
+  // The same boundary faces, every one on a cell, the mesh conforming.
+  EXPECT_EQ(mesh.face_count(), boundary_faces);
+  const FaceConnectivity faces = match_faces(mesh);
+  EXPECT_TRUE(faces.conforming());
+  EXPECT_TRUE(faces.untagged_boundary.empty());
+  EXPECT_TRUE(faces.stray_boundary_faces.empty());
+  // Boundary points never move.
+  for (std::size_t p = 0; p < mesh.points.size(); ++p) {
+    const Vector3& x = mesh.points[p];
+    if (x.minCoeff() == 0.0 || x.maxCoeff() == 6.0) {
+      EXPECT_EQ(x, Vector3(x.array().round().matrix()));
+    }
+  }
+}
+
+TEST(SliverRemoval, BadOptionsAreRejected) {
+  MixedMesh mesh = cube_block(1);
+  SliverOptions options;
+  options.target_dihedral_degrees = 185.0;
+  EXPECT_THROW(remove_slivers(mesh, options), Error);
+  options = SliverOptions{};
+  options.maximum_ring = 2;
+  EXPECT_THROW(remove_slivers(mesh, options), Error);
+}
+
+}  // namespace
+}  // namespace mixmesh
