@@ -227,8 +227,11 @@ void split_cell(CellType type, std::size_t cell, const Index* nodes, unsigned ou
                  });
 }
 
+constexpr double minimum_cap_reach = 0.4;
+
 // Keeps the cell and caps every outer quad with a pyramid outside it, apex above the
-// quad's centre at cap_height × its shortest edge; the caps' sides join the hull.
+// quad's centre at cap_height × its shortest edge (for a marked cell at least
+// minimum_cap_reach × its longest); the caps' sides join the hull.
 void cap_cell(CellType type, std::size_t cell, const Index* nodes, unsigned outer_faces, int region,
               const InterfaceOptions& options, double cap_height, bool split_tried, InterfaceResult& result) {
   MixedMesh& out = result.mesh;
@@ -244,16 +247,28 @@ void cap_cell(CellType type, std::size_t cell, const Index* nodes, unsigned oute
       continue;
     }
     Vector3 middle = Vector3::Zero();
-    double shortest = std::numeric_limits<double>::infinity();
+    double shortest = std::numeric_limits<double>::infinity(), longest = 0.0;
     for (int corner = 0; corner < 4; ++corner) {
       const Vector3& here = out.points[static_cast<std::size_t>(corners[corner])];
       middle += 0.25 * here;
-      shortest =
-          std::min(shortest, (out.points[static_cast<std::size_t>(corners[(corner + 1) % 4])] - here).norm());
+      const double edge = (out.points[static_cast<std::size_t>(corners[(corner + 1) % 4])] - here).norm();
+      shortest = std::min(shortest, edge);
+      longest = std::max(longest, edge);
     }
+    // The far field fills the valley between the caps of two neighbouring quads with a
+    // tetrahedron of their shared edge and the two apexes; its dihedral angle at the
+    // apexes' edge is 180 degrees less twice atan(2 h / L) for apex height h over an edge
+    // of length L. On long, narrow quads (a wake's) a height from the shortest edge
+    // alone made those valley tetrahedra slivers, so the height of a marked cell's cap is
+    // at least a part of the longest edge (minimum_cap_reach 0.4: 0.2 L for a cap height
+    // 0.5, 136 deg). The caps of cells that could not be split (twisted cells at a tip's
+    // trailing edge, in a concave corner of the hull) keep their low height: taller,
+    // they crossed the hull there.
+    const double reach =
+        split_tried ? shortest : std::max(shortest, std::min(minimum_cap_reach * longest, 4.0 * shortest));
     const Vector3 normal = face_area_vector(out.points, corners, 4).normalized();
     const Index apex = static_cast<Index>(out.points.size());
-    out.points.push_back(middle + cap_height * shortest * normal);
+    out.points.push_back(middle + cap_height * reach * normal);
     // Seen from the apex (outside) the outward winding is counter-clockwise already.
     const Index pyramid[5] = {corners[0], corners[1], corners[2], corners[3], apex};
     // A twisted quad needs a higher apex (its corner normals lean away from the mean
@@ -265,7 +280,7 @@ void cap_cell(CellType type, std::size_t cell, const Index* nodes, unsigned oute
         (out.points[static_cast<std::size_t>(corners[3])] - out.points[static_cast<std::size_t>(corners[1])])
             .norm());
     // (A quad with an edge of zero length gets no cap: its height would stay zero.)
-    for (double height = cap_height * shortest; height > 0.0 &&
+    for (double height = cap_height * reach; height > 0.0 &&
                                                 !cell_shape(CellType::pyramid, out.points, pyramid).valid() &&
                                                 2.0 * height <= options.cap_height_limit * diagonal;) {
       height *= 2.0;
