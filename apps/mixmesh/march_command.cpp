@@ -27,6 +27,7 @@ struct MarchArguments {
   bool compare = false;
   bool keep_invalid = false;
   bool quiet = false;
+  bool verbose = false;
 };
 
 std::string metrics_row(const std::string& name, const BoundaryLayer& layer, const MarchMetrics& metrics) {
@@ -40,7 +41,9 @@ std::string metrics_row(const std::string& name, const BoundaryLayer& layer, con
 }
 
 void run_march(const MarchArguments& arguments) {
-  const Log log(&std::cout, arguments.quiet ? Log::Level::quiet : Log::Level::normal);
+  const Log log(&std::cout, arguments.quiet     ? Log::Level::quiet
+                            : arguments.verbose ? Log::Level::verbose
+                                                : Log::Level::normal);
   GenerateOptions options = load_generate_options(arguments.config, arguments.settings);
   if (arguments.normal) options.march.method = MarchMethod::normal;
   const SurfaceMesh surface = build_surface(options.surface);
@@ -104,6 +107,8 @@ void add_march_command(CLI::App& application) {
   command->add_flag("--keep-invalid", arguments->keep_invalid,
                     "If the layers are invalid, write them to NAME.INVALID.vtu beside the output");
   command->add_flag("-q,--quiet", arguments->quiet, "Print nothing but errors (and the --compare table)");
+  command->add_flag("-v,--verbose", arguments->verbose,
+                    "Also report every layer: corrector iterations, invalid cells and crossing faces");
   command->callback([arguments]() { run_march(*arguments); });
 }
 

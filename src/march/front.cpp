@@ -340,14 +340,48 @@ Front build_front(const SurfaceMesh& surface) {
       if (side == 0) across[node].push_back({f, k});
     }
   }
+  // Nodes on a free edge of a sheet: a sheet edge of one sheet face that no wall face uses.
+  std::vector<char> on_sheet_free_edge(point_count, 0);
+  {
+    std::unordered_map<std::uint64_t, int> sheet_uses;
+    auto edge_key = [](Index a, Index b) {
+      return static_cast<std::uint64_t>(std::min(a, b)) << 32 | static_cast<std::uint64_t>(std::max(a, b));
+    };
+    for (const SurfaceFace& face : faces)
+      for (int k = 0; k < face.corner_count; ++k) {
+        const std::uint64_t key = edge_key(face.nodes[static_cast<std::size_t>(k)],
+                                           face.nodes[static_cast<std::size_t>((k + 1) % face.corner_count)]);
+        sheet_uses[key] += face.wake ? 1 : 1000;
+      }
+    for (const auto& [key, uses] : sheet_uses)
+      if (uses == 1) {
+        on_sheet_free_edge[static_cast<std::size_t>(key >> 32)] = 1;
+        on_sheet_free_edge[static_cast<std::size_t>(key & 0xffffffffu)] = 1;
+      }
+  }
   std::vector<int> split_corner(faces.size(), -1);
   std::vector<std::pair<std::size_t, Index>> junction_nodes;  // (split face, sheet free-edge node)
   for (auto& [node, fan] : across) {
     const JunctionPlan plan = plan_junction(surface, faces, node, fan, wall_at_wake[node], corner_side,
                                             wake_normal[static_cast<std::size_t>(node)].normalized());
-    if (plan.face < 0) continue;
-    split_corner[static_cast<std::size_t>(plan.face)] = plan.corner;
-    junction_nodes.push_back({static_cast<std::size_t>(plan.face), plan.sheet_node});
+    if (plan.face >= 0) {
+      split_corner[static_cast<std::size_t>(plan.face)] = plan.corner;
+      junction_nodes.push_back({static_cast<std::size_t>(plan.face), plan.sheet_node});
+    } else if (!on_sheet_free_edge[static_cast<std::size_t>(node)]) {
+      // Wall faces across a sheet along its attachment, away from its free edges (a
+      // blunt base, the wake leaving from its middle): each joins the line on the side
+      // of the sheet its centre lies, as the wing's surfaces do at a sharp trailing
+      // edge. (A wall line of their own would march into the sheet.)
+      for (const auto& [f, k] : fan) {
+        Vector3 centre = Vector3::Zero();
+        for (int c = 0; c < faces[f].corner_count; ++c)
+          centre += surface.points[static_cast<std::size_t>(faces[f].nodes[static_cast<std::size_t>(c)])] /
+                    faces[f].corner_count;
+        const double above = (centre - surface.points[static_cast<std::size_t>(node)])
+                                 .dot(wake_normal[static_cast<std::size_t>(node)]);
+        corner_side[f][static_cast<std::size_t>(k)] = above >= 0.0 ? +1 : -1;
+      }
+    }
   }
   std::sort(junction_nodes.begin(), junction_nodes.end());
 

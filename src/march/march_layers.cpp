@@ -220,6 +220,48 @@ std::vector<double> distance_from_wall_lines(const Front& front, const std::vect
   return distance;
 }
 
+// Per line on a sheet, the unit normal of the sheet faces on its side (pointing away
+// from the sheet); zero for the other lines.
+std::vector<Vector3> sheet_side_normals(const Front& front, const std::vector<Vector3>& points) {
+  std::vector<Vector3> normal(points.size(), Vector3::Zero());
+  for (const FrontFace& f : front.faces) {
+    if (f.wall || f.wrap) continue;
+    const int n = f.corner_count;
+    Vector3 area = Vector3::Zero();
+    for (int k = 0; k < n; ++k)
+      area += points[static_cast<std::size_t>(f.columns[static_cast<std::size_t>(k)])].cross(
+          points[static_cast<std::size_t>(f.columns[static_cast<std::size_t>((k + 1) % n)])]);
+    for (int k = 0; k < n; ++k) normal[static_cast<std::size_t>(f.columns[static_cast<std::size_t>(k)])] += area;
+  }
+  for (Vector3& v : normal) v = unit_or(v, Vector3::Zero());
+  return normal;
+}
+
+// A line that starts on a wall and on a sheet leaves the sheet's plane by at least 45
+// degrees on its own side. Where the wall there faces along the sheet (a blunt base
+// with the wake leaving from its middle) the wall's normal lies in the sheet's plane,
+// and the lines above and below would march along the same direction.
+Vector3 off_the_sheet(const Vector3& normal, const Vector3& sheet_normal) {
+  constexpr double least = 0.7071;  // sin 45 degrees
+  const double along = normal.dot(sheet_normal);
+  if (sheet_normal.squaredNorm() == 0.0 || along >= least) return normal;
+  const Vector3 in_plane = normal - along * sheet_normal;
+  if (in_plane.norm() < 1e-12) return sheet_normal;
+  return std::sqrt(1.0 - least * least) * in_plane.normalized() + least * sheet_normal;
+}
+
+// The step of a line towards a symmetry plane fades where the layers grow as thick as
+// the line is far from the plane: the lines in the plane march in it, so a neighbour
+// that keeps moving towards it (the upper side of a wing or wake with dihedral) closes
+// the row of cells between them. On a wake, whose layers thicken to a metre, this
+// stopped the row next to the plane on ordinary wings with 2-8 degrees of dihedral.
+Vector3 fade_towards_symmetry(const Vector3& direction, double distance, double height) {
+  if (distance == 0.0 || direction.y() * distance >= 0.0) return direction;
+  Vector3 faded = direction;
+  faded.y() *= 1.0 - std::exp(-std::abs(distance) / height);
+  return unit_or(faded, direction);
+}
+
 }  // namespace
 
 BoundaryLayer march_layers(const SurfaceMesh& surface, const MarchOptions& options, const Log* log) {
@@ -270,6 +312,8 @@ BoundaryLayer march_layers(const SurfaceMesh& surface, const MarchOptions& optio
       junction_line[static_cast<std::size_t>(
           front.faces[static_cast<std::size_t>(junction.face)].columns[static_cast<std::size_t>(k)])] = 1;
   direction = column_normals(front, current, face_active, true, direction, on_wall, 1.0);
+  const std::vector<Vector3> sheet_normal = sheet_side_normals(front, current);
+  std::vector<double> marched(column_count, 0.0);  // each line's length so far
   previous = current;
 
   MarchReport& report = result.report;
@@ -297,6 +341,8 @@ BoundaryLayer march_layers(const SurfaceMesh& surface, const MarchOptions& optio
         if (junction_line[c] && layer > 0) normal[c] = first_normal[c];
       if (layer == 0) first_normal = normal;
     }
+    for (std::size_t c = 0; c < column_count; ++c)
+      if (on_wall[c] && !junction_line[c]) normal[c] = off_the_sheet(normal[c], sheet_normal[c]);
 
     // Predictor: the layer normal, blended with the previous marching direction.
     const double memory = smoothed && layer > 0 ? options.direction_memory : 0.0;
@@ -383,6 +429,10 @@ BoundaryLayer march_layers(const SurfaceMesh& surface, const MarchOptions& optio
         next[c] = current[c] + step[c] * (Eigen::AngleAxisd(turn_limit, axis.normalized()) * before);
       }
     for (std::size_t c = 0; c < column_count; ++c) {
+      if (surface.symmetry_tolerance >= 0.0 && !front.on_symmetry[c])
+        next[c] = current[c] + step[c] * fade_towards_symmetry(unit_or(next[c] - current[c], normal[c]),
+                                                                current[c].y() - surface.symmetry_y,
+                                                                marched[c] + step[c]);
       next[c] = keep_in_sheet_end(current[c], next[c], conormals[c]);
       if (front.on_symmetry[c]) next[c].y() = surface.symmetry_y;
     }
@@ -477,6 +527,7 @@ BoundaryLayer march_layers(const SurfaceMesh& surface, const MarchOptions& optio
       any = true;
       result.column_points[c].push_back(static_cast<Index>(result.mesh.points.size()));
       result.mesh.points.push_back(next[c]);
+      marched[c] += (next[c] - current[c]).norm();
       direction[c] = unit_or(next[c] - current[c], direction[c]);
       previous[c] = current[c];
       current[c] = next[c];
