@@ -59,6 +59,8 @@ class SliverRemoval {
         ++report.edge_removals;
       } else if (flip_a_face(t)) {
         ++report.face_flips;
+      } else if (split_an_edge(t)) {
+        ++report.edge_splits;
       } else if (options_.smooth_points && smooth_a_point(t)) {
         ++report.smoothed_points;
       } else {
@@ -159,6 +161,64 @@ class SliverRemoval {
       complex_.remove(other);
       for (int k = 0; k < 3; ++k)
         complex_.add({d, e, ring[static_cast<std::size_t>(k)], ring[static_cast<std::size_t>((k + 1) % 3)]}, region);
+      return true;
+    }
+    return false;
+  }
+
+  // Edge split: a sliver's four points lie almost in a plane, two of its edges crossing
+  // (seen across the plane); a new point where one of them passes the other cuts every
+  // tetrahedron round that edge in two. Where the other edge belongs to a pyramid (the
+  // interface's split of a flat outer cell: the cell's centre just under the hull,
+  // right below the middle of the outer quad's diagonal) this is the only way out.
+  bool split_an_edge(int t) {
+    static constexpr std::array<std::array<int, 4>, 6> edges{
+        {{0, 1, 2, 3}, {0, 2, 1, 3}, {0, 3, 1, 2}, {1, 2, 0, 3}, {1, 3, 0, 2}, {2, 3, 0, 1}}};
+    const Tetrahedron nodes = complex_.nodes(t);
+    for (const auto& edge : edges) {
+      const Index a = nodes[static_cast<std::size_t>(edge[0])], c = nodes[static_cast<std::size_t>(edge[1])];
+      if (!complex_.ring(t, a, c, apexes_, ring_)) continue;
+      // The point of segment a-c closest to the line of the opposite edge.
+      const Vector3 u = point(c) - point(a);
+      const Vector3 v = point(nodes[static_cast<std::size_t>(edge[3])]) - point(nodes[static_cast<std::size_t>(edge[2])]);
+      const Vector3 w = point(a) - point(nodes[static_cast<std::size_t>(edge[2])]);
+      const double uu = u.dot(u), uv = u.dot(v), vv = v.dot(v), uw = u.dot(w), vw = v.dot(w);
+      const double denominator = uu * vv - uv * uv;
+      if (!(denominator > 1e-12 * uu * vv)) continue;
+      const double s = std::clamp((uv * vw - vv * uw) / denominator, 0.2, 0.8);
+      const Vector3 middle = point(a) + s * u;
+      double old_worst = std::numeric_limits<double>::infinity();
+      for (int cell : ring_) old_worst = std::min(old_worst, quality(complex_, cell));
+      // Each tetrahedron round the edge gives two: the new point in place of c, and in
+      // place of a (the same orientation).
+      std::vector<Tetrahedron> pieces;
+      for (int cell : ring_)
+        for (Index replaced : {c, a}) {
+          Tetrahedron piece = complex_.nodes(cell);
+          for (Index& node : piece)
+            if (node == replaced) node = -1;
+          pieces.push_back(piece);
+        }
+      complex_.points().push_back(middle);
+      const auto scratch = static_cast<Index>(complex_.points().size() - 1);
+      double new_worst = std::numeric_limits<double>::infinity();
+      for (Tetrahedron piece : pieces) {
+        for (Index& node : piece)
+          if (node < 0) node = scratch;
+        new_worst = std::min(new_worst, quality(complex_, piece));
+      }
+      complex_.points().pop_back();
+      if (!(new_worst > old_worst + 1e-6)) continue;
+      const Index added = complex_.add_point(middle);
+      std::vector<int> regions;
+      for (int cell : ring_) regions.push_back(complex_.region(cell));
+      for (int cell : ring_) complex_.remove(cell);
+      for (std::size_t k = 0; k < pieces.size(); ++k) {
+        Tetrahedron piece = pieces[k];
+        for (Index& node : piece)
+          if (node < 0) node = added;
+        complex_.add(piece, regions[k / 2]);
+      }
       return true;
     }
     return false;

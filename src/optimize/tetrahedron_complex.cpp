@@ -53,6 +53,13 @@ TetrahedronComplex::TetrahedronComplex(MixedMesh& mesh) : mesh_(mesh) {
   }
 }
 
+Index TetrahedronComplex::add_point(const Vector3& point) {
+  mesh_.points.push_back(point);
+  around_.emplace_back();
+  free_.push_back(1);
+  return static_cast<Index>(mesh_.points.size() - 1);
+}
+
 int TetrahedronComplex::add(const Tetrahedron& nodes, int region) {
   const int t = static_cast<int>(tetrahedra_.size());
   tetrahedra_.push_back(nodes);

@@ -40,6 +40,8 @@ class TetrahedronComplex {
   // ring does not close (the edge is on a boundary or a face of another cell type).
   bool ring(int t, Index a, Index b, std::vector<Index>& apexes, std::vector<int>& tetrahedra) const;
 
+  // Appends a point used by tetrahedra only.
+  Index add_point(const Vector3& point);
   int add(const Tetrahedron& nodes, int region);
   void remove(int t);
   // Writes the alive tetrahedra back into the mesh.

@@ -186,6 +186,7 @@ GenerateResult generate_from_surface(const SurfaceMesh& surface, const GenerateO
              " deg (largest dihedral " + fixed_text(slivers.largest_dihedral_before) + " -> " +
              fixed_text(slivers.largest_dihedral_after) + " deg), " + std::to_string(slivers.edge_removals) +
              " edge removals, " + std::to_string(slivers.face_flips) + " face flips, " +
+             std::to_string(slivers.edge_splits) + " edge splits, " +
              std::to_string(slivers.smoothed_points) + " points moved");
   }
   result.validity = run_stage("validate", report, [&] { return validate(result.mesh); });

@@ -12,6 +12,8 @@
 //     replaced by the best triangulation of their ring (3 -> 2, 4 -> 4, ... flips);
 //   - face flip: two tetrahedra sharing a face become three round the segment between
 //     their apexes (2 -> 3);
+//   - edge split: a new point on an interior edge of the sliver, where it passes the
+//     opposite edge, cuts every tetrahedron round the edge in two;
 //   - point smoothing: a point used by tetrahedra only and on no boundary face moves to
 //     the best of a few trial positions.
 // Faces shared with a pyramid, prism or hexahedron and boundary faces are never
@@ -37,7 +39,8 @@ struct SliverReport {
   std::size_t tetrahedra_before = 0, tetrahedra_after = 0;
   double largest_dihedral_before = 0.0, largest_dihedral_after = 0.0;  // degrees
   std::size_t above_target_before = 0, above_target_after = 0;
-  std::size_t edge_removals = 0, face_flips = 0, smoothed_points = 0;
+  // Operations done; every edge split appends one point to the mesh.
+  std::size_t edge_removals = 0, face_flips = 0, edge_splits = 0, smoothed_points = 0;
   int passes = 0;
 };
 
