@@ -177,7 +177,8 @@ GenerateResult generate_from_surface(const SurfaceMesh& surface, const GenerateO
     return pipeline_detail::assemble(interface.mesh, options.interface.hull_marker, farfield_result,
                                      wall_marker_names(surface), options.output.merge_wall_markers);
   });
-  if (options.slivers.passes > 0) {
+  {
+    // With passes = 0 the stage only measures the tetrahedra.
     report.slivers = run_stage("slivers", report, [&] { return remove_slivers(result.mesh, options.slivers); });
     const SliverReport& slivers = report.slivers;
     log.info("slivers: " + seconds_text(report.stages.back().seconds) + ", " +
@@ -250,6 +251,8 @@ void write_report(const std::filesystem::path& path, const GenerateReport& repor
          << "\nlayers_completed = " << report.march.layers_completed
          << "\nstopped_faces = " << report.march.stopped_faces
          << "\nhull_metric_edges_within_range = " << report.farfield_summary.hull_lengths.within_range
+         << "\nlargest_dihedral = " << report.slivers.largest_dihedral_after
+         << "\ntetrahedra_above_target_dihedral = " << report.slivers.above_target_after
          << "\nseconds = " << report.seconds << "\n";
     if (!deformed.empty()) {
       double minimum = deformed.front().min_scaled_jacobian;
