@@ -36,6 +36,23 @@ double quality(const TetrahedronComplex& complex, int t) {
   return quality(complex, complex.nodes(t));
 }
 
+// The worst quality of a set of tetrahedra and their shortfall: how far they fall below
+// the target in total. A change is taken when it raises the worst, or keeps it and
+// lowers the shortfall (a sliver next to a worse one that the change cannot mend).
+struct Tally {
+  double worst = std::numeric_limits<double>::infinity();
+  double shortfall = 0.0;
+
+  void add(double q, double target) {
+    worst = std::min(worst, q);
+    shortfall += q == invalid ? std::numeric_limits<double>::infinity() : std::max(0.0, target - q);
+  }
+  bool better_than(const Tally& old) const {
+    if (worst == invalid) return false;
+    return worst > old.worst + 1e-6 || (worst >= old.worst - 1e-9 && shortfall < old.shortfall - 1e-6);
+  }
+};
+
 class SliverRemoval {
  public:
   SliverRemoval(MixedMesh& mesh, const SliverOptions& options) : complex_(mesh), options_(options) {}
@@ -89,8 +106,8 @@ class SliverRemoval {
                                                        point(first[3])) <
           0.0)
         std::swap(a, b);
-      double old_worst = std::numeric_limits<double>::infinity();
-      for (int cell : ring_) old_worst = std::min(old_worst, quality(complex_, cell));
+      Tally old;
+      for (int cell : ring_) old.add(quality(complex_, cell), target());
       const int m = static_cast<int>(apexes_.size());
       std::vector<double> best(static_cast<std::size_t>(m * m), std::numeric_limits<double>::infinity());
       std::vector<int> split(static_cast<std::size_t>(m * m), -1);
@@ -110,9 +127,8 @@ class SliverRemoval {
             }
           }
         }
-      if (!(at(0, m - 1) > old_worst + 1e-6)) continue;
-      const int region = complex_.region(t);
-      for (int cell : ring_) complex_.remove(cell);
+      if (at(0, m - 1) == invalid) continue;
+      std::vector<Tetrahedron> pieces;
       std::vector<std::pair<int, int>> pending{{0, m - 1}};
       while (!pending.empty()) {
         const auto [i, j] = pending.back();
@@ -121,11 +137,17 @@ class SliverRemoval {
         const int k = split[static_cast<std::size_t>(i * m + j)];
         const Index vi = apexes_[static_cast<std::size_t>(i)], vk = apexes_[static_cast<std::size_t>(k)],
                     vj = apexes_[static_cast<std::size_t>(j)];
-        complex_.add({a, vi, vk, vj}, region);
-        complex_.add({b, vi, vj, vk}, region);
+        pieces.push_back({a, vi, vk, vj});
+        pieces.push_back({b, vi, vj, vk});
         pending.push_back({i, k});
         pending.push_back({k, j});
       }
+      Tally replaced;
+      for (const Tetrahedron& piece : pieces) replaced.add(quality(complex_, piece), target());
+      if (!replaced.better_than(old)) continue;
+      const int region = complex_.region(t);
+      for (int cell : ring_) complex_.remove(cell);
+      for (const Tetrahedron& piece : pieces) complex_.add(piece, region);
       return true;
     }
     return false;
@@ -150,12 +172,14 @@ class SliverRemoval {
               tetrahedron_volume6(point(d), point(e), point(ring[0]), point(ring[1])) <
           0.0)
         std::swap(ring[1], ring[2]);
-      const double old_worst = std::min(quality(complex_, t), quality(complex_, other));
-      double new_worst = std::numeric_limits<double>::infinity();
+      Tally old, replaced;
+      old.add(quality(complex_, t), target());
+      old.add(quality(complex_, other), target());
       for (int k = 0; k < 3; ++k)
-        new_worst = std::min(new_worst, quality(complex_, Tetrahedron{d, e, ring[static_cast<std::size_t>(k)],
-                                                                       ring[static_cast<std::size_t>((k + 1) % 3)]}));
-      if (!(new_worst > old_worst + 1e-6)) continue;
+        replaced.add(quality(complex_, Tetrahedron{d, e, ring[static_cast<std::size_t>(k)],
+                                                   ring[static_cast<std::size_t>((k + 1) % 3)]}),
+                     target());
+      if (!replaced.better_than(old)) continue;
       const int region = complex_.region(t);
       complex_.remove(t);
       complex_.remove(other);
@@ -187,8 +211,8 @@ class SliverRemoval {
       if (!(denominator > 1e-12 * uu * vv)) continue;
       const double s = std::clamp((uv * vw - vv * uw) / denominator, 0.2, 0.8);
       const Vector3 middle = point(a) + s * u;
-      double old_worst = std::numeric_limits<double>::infinity();
-      for (int cell : ring_) old_worst = std::min(old_worst, quality(complex_, cell));
+      Tally old;
+      for (int cell : ring_) old.add(quality(complex_, cell), target());
       // Each tetrahedron round the edge gives two: the new point in place of c, and in
       // place of a (the same orientation).
       std::vector<Tetrahedron> pieces;
@@ -201,14 +225,14 @@ class SliverRemoval {
         }
       complex_.points().push_back(middle);
       const auto scratch = static_cast<Index>(complex_.points().size() - 1);
-      double new_worst = std::numeric_limits<double>::infinity();
+      Tally replaced;
       for (Tetrahedron piece : pieces) {
         for (Index& node : piece)
           if (node < 0) node = scratch;
-        new_worst = std::min(new_worst, quality(complex_, piece));
+        replaced.add(quality(complex_, piece), target());
       }
       complex_.points().pop_back();
-      if (!(new_worst > old_worst + 1e-6)) continue;
+      if (!replaced.better_than(old)) continue;
       const Index added = complex_.add_point(middle);
       std::vector<int> regions;
       for (int cell : ring_) regions.push_back(complex_.region(cell));
@@ -279,6 +303,7 @@ class SliverRemoval {
   }
 
   const Vector3& point(Index p) { return complex_.points()[static_cast<std::size_t>(p)]; }
+  double target() const { return 180.0 - options_.target_dihedral_degrees; }
 
   TetrahedronComplex complex_;
   SliverOptions options_;
