@@ -166,8 +166,30 @@ GenerateResult generate_from_surface(const SurfaceMesh& surface, const GenerateO
   // includes the wake.
   if (farfield_options.reference_chord <= 0.0 && options.surface.wing)
     farfield_options.reference_chord = options.surface.wing->stations.front().chord;
-  FarFieldResult farfield_result =
-      run_stage("farfield", report, [&] { return farfield(farfield_input, farfield_options, log); });
+  FarFieldResult farfield_result = run_stage("farfield", report, [&] {
+    try {
+      return farfield(farfield_input, farfield_options, log);
+    } catch (const Error& error) {
+      // A hull the far field cannot fill comes from the layers: say where they stopped
+      // and what to change, not only what TetGen found.
+      const std::string message = error.what();
+      if (message.find("intersect") == std::string::npos && message.find("hull edge") == std::string::npos &&
+          message.find("hull is open") == std::string::npos)
+        throw;
+      std::string hint;
+      if (!layers.report.stopped.empty()) {
+        const StoppedRegion& first = layers.report.stopped.front();
+        hint = "; the layers stopped early on " + std::to_string(layers.report.stopped_faces) +
+               " faces (the first at layer " + std::to_string(first.layer) + " near " +
+               point_text(first.location) +
+               "): fewer or thinner layers (march.layers, march.growth_rate) or a finer surface there "
+               "keep the layers clear of each other";
+      } else {
+        hint = "; check that the wing's sections do not intersect and that the wake does not cross the wing";
+      }
+      throw Error(message + hint);
+    }
+  });
   log.info("farfield: " + seconds_text(report.stages.back().seconds) + ", " +
            std::to_string(farfield_result.mesh.cell_count(CellType::tetrahedron)) + " tetrahedra, " +
            std::to_string(farfield_result.mesh.points.size() - farfield_result.input_point_count) +
