@@ -1,6 +1,6 @@
 // run_isolated: a computation in a forked child process, its result sent back
-// through a pipe. For library code that can crash on bad input (TetGen 1.5 frees
-// memory twice when it stops on an error): a crash becomes a mixmesh::Error.
+// through a pipe. For library code that can crash or run too long on bad input
+// (TetGen): a crash becomes a mixmesh::Error, a time-out a TimeLimitError.
 #pragma once
 
 #include <signal.h>

@@ -13,6 +13,8 @@
 
 namespace mixmesh::farfield_parts {
 
+void use_single_free_termination();  // tetgen_terminate.cpp
+
 namespace {
 
 // Fills a tetgenio with the points, sizes and boundary triangles (tetgenio frees
@@ -65,6 +67,7 @@ void run(const std::string& switches, tetgenio& in, tetgenio& out, bool sliver_f
     behaviour.optminsmtdihed = 179.0;
     behaviour.optminslidihed = 179.0;
   }
+  use_single_free_termination();
   tetrahedralize(&behaviour, &in, &out);
 }
 
@@ -191,9 +194,10 @@ std::size_t flat_tetrahedra(const std::vector<Vector3>& points,
 }
 
 TetgenOutput run_tetgen(const TetgenInput& input) {
-  // TetGen 1.5 frees memory twice when it stops on an error inside the library, so a
-  // bad boundary would take the whole program down: TetGen runs in a child process
-  // and only its result (or its error) comes back.
+  // TetGen runs in a child process and only its result (or its error) comes back: a
+  // run can be stopped at its time limit, and a crash inside TetGen does not take the
+  // program down. (TetGen 1.5.0 freed its memory twice on every error it stopped on;
+  // tetgen_terminate.cpp mends that, so its error codes arrive.)
   try {
     return run_isolated<TetgenOutput>(
         "TetGen", [&] { return tetrahedralise(input); }, input.time_limit_seconds);
