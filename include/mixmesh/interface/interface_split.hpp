@@ -56,8 +56,13 @@ struct InterfaceOptions {
   std::string hull_marker = "interface";
   // Cells are split about their centre (the mean of their nodes) unless the worst
   // piece's scaled corner Jacobian would fall below this; then the split point is the
-  // best one a compass search around the centre finds.
-  double centre_quality = 0.1;
+  // best one a compass search around the centre finds. 0: only where a piece about the
+  // centre is inverted. (At 0.1 every flat outer cell was searched, as its pieces are
+  // all flatter than that, and the point moved along the cell's long side, off the
+  // middle of the outer quad's diagonal: its two tetrahedra on the outer quad became
+  // slivers the sliver pass could not mend; on a random 7.7 m-chord wing 2,088
+  // tetrahedra above 175 deg against 1,582.)
+  double centre_quality = 0.0;
   // Cells with an outer quad tagged with this marker are kept whole and capped, as
   // below, instead of being split about a centre point (even with
   // cap_unsplittable_cells false). The march tags the hull faces of a sheet's layers (a
