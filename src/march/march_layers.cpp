@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <sstream>
 
@@ -262,6 +263,61 @@ Vector3 fade_towards_symmetry(const Vector3& direction, double distance, double 
   return unit_or(faded, direction);
 }
 
+// Adds to `stopping` (faces that stop at this layer) the faces that would otherwise
+// meet a line in two separate fans: where the faces still growing round a line are
+// split by stopped ones into groups that share no edge at the line, the layer's cells
+// of different groups touch along that line alone and the hull pinches there (an edge
+// on four hull faces). All but the largest group stop too, until no line is pinched.
+void close_pinched_lines(const Front& front, const std::vector<char>& face_active, std::vector<int>& stopping) {
+  std::vector<char> growing = face_active;
+  for (int face : stopping) growing[static_cast<std::size_t>(face)] = 0;
+  std::vector<int> lines;
+  auto collect = [&](int face) {
+    const FrontFace& f = front.faces[static_cast<std::size_t>(face)];
+    for (int k = 0; k < f.corner_count; ++k) lines.push_back(f.columns[static_cast<std::size_t>(k)]);
+  };
+  for (int face : stopping) collect(face);
+  while (!lines.empty()) {
+    const int line = lines.back();
+    lines.pop_back();
+    std::vector<int> faces;
+    for (int face : front.column_faces[static_cast<std::size_t>(line)])
+      if (growing[static_cast<std::size_t>(face)]) faces.push_back(face);
+    if (faces.size() < 2) continue;
+    // Groups of faces joined by an edge at the line (union-find over the few faces).
+    std::vector<std::size_t> group(faces.size());
+    for (std::size_t i = 0; i < faces.size(); ++i) group[i] = i;
+    auto root = [&](std::size_t i) {
+      while (group[i] != i) i = group[i] = group[group[i]];
+      return i;
+    };
+    auto neighbours = [&](int face) {
+      const FrontFace& f = front.faces[static_cast<std::size_t>(face)];
+      std::array<int, 2> pair{-1, -1};
+      for (int k = 0; k < f.corner_count; ++k)
+        if (f.columns[static_cast<std::size_t>(k)] == line)
+          pair = {f.columns[static_cast<std::size_t>((k + 1) % f.corner_count)],
+                  f.columns[static_cast<std::size_t>((k + f.corner_count - 1) % f.corner_count)]};
+      return pair;
+    };
+    for (std::size_t i = 0; i < faces.size(); ++i)
+      for (std::size_t j = i + 1; j < faces.size(); ++j) {
+        const std::array<int, 2> a = neighbours(faces[i]), b = neighbours(faces[j]);
+        if (a[0] == b[0] || a[0] == b[1] || a[1] == b[0] || a[1] == b[1]) group[root(i)] = root(j);
+      }
+    std::vector<std::size_t> size(faces.size(), 0);
+    for (std::size_t i = 0; i < faces.size(); ++i) ++size[root(i)];
+    const std::size_t largest =
+        static_cast<std::size_t>(std::max_element(size.begin(), size.end()) - size.begin());
+    for (std::size_t i = 0; i < faces.size(); ++i)
+      if (root(i) != largest) {
+        growing[static_cast<std::size_t>(faces[i])] = 0;
+        stopping.push_back(faces[i]);
+        collect(faces[i]);
+      }
+  }
+}
+
 }  // namespace
 
 BoundaryLayer march_layers(const SurfaceMesh& surface, const MarchOptions& options, const Log* log) {
@@ -291,6 +347,15 @@ BoundaryLayer march_layers(const SurfaceMesh& surface, const MarchOptions& optio
   }
   result.face_layers.assign(face_count, 0);
   std::vector<char> face_active(face_count, 1);
+  // Blending: a face next to one that stopped at layer k stops at k + 1 at the latest,
+  // the next ring at k + 2 …, so the stack slopes down to a stopped region instead of
+  // standing over it as a cliff (whose pit the far field's hull could not close).
+  std::vector<int> stop_at(face_count, std::numeric_limits<int>::max());
+  std::vector<std::vector<int>> face_neighbours(face_count);
+  for (const march_detail::SharedEdge& edge : front.shared_edges) {
+    face_neighbours[static_cast<std::size_t>(edge.faces[0])].push_back(edge.faces[1]);
+    face_neighbours[static_cast<std::size_t>(edge.faces[1])].push_back(edge.faces[0]);
+  }
   std::vector<char> on_wall(column_count, 0);
   for (const FrontFace& f : front.faces)
     if (f.wall)
@@ -499,6 +564,28 @@ BoundaryLayer march_layers(const SurfaceMesh& surface, const MarchOptions& optio
         if (sheet_stops && std::find(bad.begin(), bad.end(), junction.face) == bad.end())
           bad.push_back(junction.face);
       }
+    for (std::size_t face = 0; face < face_count; ++face)
+      if (face_active[face] && stop_at[face] <= layer &&
+          std::find(bad.begin(), bad.end(), static_cast<int>(face)) == bad.end()) {
+        bad.push_back(static_cast<int>(face));
+        ++report.blended_faces;
+      }
+    if (!bad.empty()) close_pinched_lines(front, face_active, bad);
+    // The slope round this layer's stops (breadth first, one layer per ring of faces).
+    std::vector<int> ring = bad;
+    for (int face : bad) stop_at[static_cast<std::size_t>(face)] = std::min(stop_at[static_cast<std::size_t>(face)], layer);
+    while (!ring.empty()) {
+      std::vector<int> next_ring;
+      for (int face : ring)
+        for (int neighbour : face_neighbours[static_cast<std::size_t>(face)]) {
+          const int limit = stop_at[static_cast<std::size_t>(face)] + 1;
+          if (limit >= static_cast<int>(steps.size()) || stop_at[static_cast<std::size_t>(neighbour)] <= limit)
+            continue;
+          stop_at[static_cast<std::size_t>(neighbour)] = limit;
+          next_ring.push_back(neighbour);
+        }
+      ring = std::move(next_ring);
+    }
     for (int face : bad) {
       face_active[static_cast<std::size_t>(face)] = 0;
       const FrontFace& f = front.faces[static_cast<std::size_t>(face)];
@@ -549,6 +636,7 @@ BoundaryLayer march_layers(const SurfaceMesh& surface, const MarchOptions& optio
     report.total_thickness += steps[static_cast<std::size_t>(layer)];
   for (auto& [layer, region] : stopped) {
     region.location /= region.faces;
+    for (std::size_t k = static_cast<std::size_t>(layer); k < steps.size(); ++k) region.thickness_lost += steps[k];
     report.stopped_faces += region.faces;
     report.stopped.push_back(region);
   }
@@ -573,7 +661,8 @@ BoundaryLayer march_layers(const SurfaceMesh& surface, const MarchOptions& optio
                 scientific(report.junction_minimum_scaled_jacobian));
     for (const StoppedRegion& region : report.stopped)
       log->warning("march: " + std::to_string(region.faces) + " faces stopped at layer " +
-                   std::to_string(region.layer) + " near " + point_text(region.location));
+                   std::to_string(region.layer) + " near " + point_text(region.location) + " (" +
+                   scientific(region.thickness_lost) + " m of the wall stack lost)");
   }
   return result;
 }

@@ -118,9 +118,15 @@ GenerateResult generate_from_surface(const SurfaceMesh& surface, const GenerateO
            std::to_string(layers.mesh.cell_count(CellType::prism)) + " prisms, first spacing " +
            std::to_string(layers.report.first_spacing) + " m, thickness " +
            std::to_string(layers.report.total_thickness) + " m");
-  if (layers.report.stopped_faces > 0)
+  if (layers.report.stopped_faces > 0) {
+    const StoppedRegion& lowest = layers.report.stopped.front();  // sorted by layer
     log.warning("march: growth stopped early on " + std::to_string(layers.report.stopped_faces) + " faces (" +
-                std::to_string(layers.report.stopped_nodes) + " nodes)");
+                std::to_string(layers.report.stopped_nodes) + " nodes, " +
+                std::to_string(layers.report.blended_faces) + " of them to slope down to the others); the lowest " +
+                std::to_string(lowest.faces) + " at layer " + std::to_string(lowest.layer) + " near " +
+                point_text(lowest.location) + ", " + std::to_string(lowest.thickness_lost) +
+                " m of the wall stack lost");
+  }
 
   const InterfaceResult interface = run_stage("interface", report, [&] {
     const OuterLayer outer = pipeline_detail::outer_layer(
@@ -272,6 +278,8 @@ void write_report(const std::filesystem::path& path, const GenerateReport& repor
          << "\nmin_scaled_jacobian = " << report.min_scaled_jacobian
          << "\nlayers_completed = " << report.march.layers_completed
          << "\nstopped_faces = " << report.march.stopped_faces
+         << "\nblended_faces = " << report.march.blended_faces
+         << "\nthickness_lost = " << (report.march.stopped.empty() ? 0.0 : report.march.stopped.front().thickness_lost)
          << "\nhull_metric_edges_within_range = " << report.farfield_summary.hull_lengths.within_range
          << "\nlargest_dihedral = " << report.slivers.largest_dihedral_after
          << "\ntetrahedra_above_target_dihedral = " << report.slivers.above_target_after

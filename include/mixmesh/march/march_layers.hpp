@@ -82,6 +82,7 @@ struct StoppedRegion {
   int layer = 0;              // layer the columns stopped at
   int faces = 0;              // surface faces whose column stopped there
   Vector3 location{0, 0, 0};  // centre of those faces on the wall
+  double thickness_lost = 0.0;  // metres: the wall steps of the layers they did not reach
 };
 
 struct MarchReport {
@@ -92,6 +93,7 @@ struct MarchReport {
   int reduced_steps = 0;               // node steps shortened to keep a cell valid
   int stopped_faces = 0;               // surface faces whose column stopped early
   int stopped_nodes = 0;               // surface nodes on such faces
+  int blended_faces = 0;               // of those, stopped to slope down to a stopped neighbour
   std::vector<StoppedRegion> stopped;  // grouped by layer
   // Corrector: sweeps or outer iterations over all layers, and the largest last change
   // of a layer (node change of its last iteration / node step).
