@@ -41,7 +41,7 @@ struct BatchOptions {
 
 struct CaseResult {
   std::string name;
-  std::string status;  // "ok", or "failed (exit N)" / "failed (signal N)"
+  std::string status;  // "ok", or "failed (exit N)" / "failed (signal N)"; "not finished" (Slurm)
   int exit_code = 0;
   double seconds = 0.0;
   long peak_memory_kib = 0;
