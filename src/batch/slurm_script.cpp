@@ -69,19 +69,16 @@ std::string read_template(const fs::path& path) {
 }
 
 // Replaces every {{name}}; an unknown one is an error at its line, since a site
-// template with a misspelt placeholder would otherwise submit a broken script.
+// template with a misspelt placeholder would otherwise submit a broken script. A
+// template without the #SBATCH lines or the task would run nothing useful.
 std::string fill_template(const std::string& text, const fs::path& path,
                           const std::vector<std::pair<std::string, std::string>>& values) {
   const std::string name = path.empty() ? "the built-in template" : path.string();
-  for (const auto& [placeholder, value] : values)
-    if (placeholder != "{{output}}" && text.find(placeholder) == std::string::npos)
-      throw Error(name + ": the script template has no " + placeholder);
   std::string result;
-  std::size_t start = 0;
-  while (true) {
+  for (std::size_t start = 0;;) {
     const std::size_t open = text.find("{{", start);
     result += text.substr(start, open - start);
-    if (open == std::string::npos) return result;
+    if (open == std::string::npos) break;
     const std::size_t close = text.find("}}", open);
     const std::string placeholder = text.substr(open, close == std::string::npos ? 2 : close + 2 - open);
     const auto known = std::find_if(values.begin(), values.end(),
@@ -94,6 +91,10 @@ std::string fill_template(const std::string& text, const fs::path& path,
     result += known->second;
     start = close + 2;
   }
+  for (const char* required : {"{{sbatch}}", "{{task}}"})
+    if (text.find(required) == std::string::npos)
+      throw Error(name + ": the script template has no " + required);
+  return result;
 }
 
 }  // namespace

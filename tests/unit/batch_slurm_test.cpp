@@ -159,10 +159,11 @@ TEST(BatchSlurm, SiteTemplateReplacesTheBuiltInScript) {
             std::string::npos)
       << script;
 
-  write(options.script_template, "#!/bin/bash\n{{sbatch}}\n{{task}} {{tasks}}\n");
+  // The misspelling is named, not only the placeholder it leaves missing.
+  write(options.script_template, "#!/bin/bash\n{{sbatch}}\n{{tsk}}\n");
   EXPECT_NE(error_of([&] {
               batch::array_script({"/bin/mixmesh", "/out", {4}}, options);
-            }).find("site.sh:3: unknown placeholder {{tasks}}"),
+            }).find("site.sh:3: unknown placeholder {{tsk}}"),
             std::string::npos);
   write(options.script_template, "#!/bin/bash\n{{sbatch}}\n");
   EXPECT_NE(error_of([&] {
