@@ -144,6 +144,8 @@ start() {
     || fail "Slurm is not installed (run: $0 install)" || return 1
   write_configs
   as_root install -d -o munge -g munge -m 0755 /run/munge
+  # Debian's munge creates its key when installed; an older or stripped install may not.
+  as_root test -f /etc/munge/munge.key || as_root runuser -u munge -- mungekey --create
   as_root install -d -o mysql -g mysql -m 0755 /run/mysqld
   as_root mkdir -p "$logs"
   as_root touch "$logs/mariadb.log"
