@@ -9,7 +9,6 @@
 #include <cerrno>
 #include <cstring>
 #include <fstream>
-#include <regex>
 #include <sstream>
 
 #include "mixmesh/batch/slurm.hpp"
@@ -40,6 +39,40 @@ bool has_control_or_space(const std::string& text) {
   for (char character : text)
     if (std::iscntrl(static_cast<unsigned char>(character)) || character == ' ') return true;
   return false;
+}
+
+// Checked by hand rather than with <regex>, which GCC 12 warns about inside its own
+// headers under the sanitizers.
+bool is_digits(const std::string& text, std::size_t most = std::string::npos) {
+  return !text.empty() && text.size() <= most &&
+         std::all_of(text.begin(), text.end(),
+                     [](unsigned char character) { return std::isdigit(character); });
+}
+
+bool is_slurm_name(const std::string& text) {
+  return !text.empty() && std::all_of(text.begin(), text.end(), [](unsigned char character) {
+    return std::isalnum(character) ||
+           std::string("_.,+-").find(static_cast<char>(character)) != std::string::npos;
+  });
+}
+
+// Slurm's time formats: M, M:S, H:M:S, D-H, D-H:M, D-H:M:S, or no limit.
+bool is_slurm_time(const std::string& text) {
+  if (text == "UNLIMITED" || text == "INFINITE") return true;
+  std::string rest = text;
+  const auto dash = rest.find('-');
+  if (dash != std::string::npos) {
+    if (!is_digits(rest.substr(0, dash))) return false;
+    rest = rest.substr(dash + 1);
+  }
+  std::vector<std::string> parts;
+  for (std::size_t start = 0;; start = rest.find(':', start) + 1) {
+    parts.push_back(rest.substr(start, rest.find(':', start) - start));
+    if (rest.find(':', start) == std::string::npos) break;
+  }
+  if (parts.size() > 3 || !is_digits(parts[0])) return false;
+  return std::all_of(parts.begin() + 1, parts.end(),
+                     [](const std::string& part) { return is_digits(part, 2); });
 }
 
 std::string sbatch_lines(const ArrayJob& job, const SlurmOptions& options) {
@@ -106,16 +139,16 @@ bool SlurmOptions::operator==(const SlurmOptions& other) const {
 }
 
 std::string slurm_value_problem(const std::string& key, const std::string& value) {
-  static const std::regex name("[A-Za-z0-9_.,+-]+");
-  static const std::regex time("UNLIMITED|INFINITE|[0-9]+(:[0-9]{1,2}){0,2}|[0-9]+-[0-9]+(:[0-9]{1,2}){0,2}");
-  static const std::regex memory("[0-9]+[KMGT]?");
   if (key == "partition" || key == "account")
-    return std::regex_match(value, name) ? "" : "must be a Slurm name (letters, digits, _ . , + -)";
+    return is_slurm_name(value) ? "" : "must be a Slurm name (letters, digits, _ . , + -)";
   if (key == "time")
-    return std::regex_match(value, time) ? ""
-                                         : "must be minutes, MM:SS, HH:MM:SS, D-HH, D-HH:MM or D-HH:MM:SS";
-  if (key == "memory")
-    return std::regex_match(value, memory) ? "" : "must be a size such as 800M or 4G (sbatch --mem)";
+    return is_slurm_time(value) ? "" : "must be minutes, MM:SS, HH:MM:SS, D-HH, D-HH:MM or D-HH:MM:SS";
+  if (key == "memory") {
+    const bool unit = !value.empty() && std::string("KMGT").find(value.back()) != std::string::npos;
+    return is_digits(unit ? value.substr(0, value.size() - 1) : value)
+               ? ""
+               : "must be a size such as 800M or 4G (sbatch --mem)";
+  }
   if (key == "directive") {
     const std::string option = value.rfind("#SBATCH", 0) == 0 ? value.substr(7) : value;
     const auto first = option.find_first_not_of(' ');
