@@ -49,7 +49,7 @@ write_configs() {
   fi
   local host node
   host=$(hostname -s)
-  node=$(slurmd -C | head -n 1)
+  node=$(/usr/sbin/slurmd -C | head -n 1)
   as_root mkdir -p "$(dirname "$config")" "$state/slurmctld" "$state/slurmd" "$logs"
   as_root tee "$config" > /dev/null << END
 $marker: one node on this machine.
@@ -140,24 +140,27 @@ start() {
     echo "slurm-cluster: Slurm is already up"
     return 0
   fi
-  command -v slurmctld > /dev/null && command -v slurmdbd > /dev/null && command -v mariadbd > /dev/null \
-    || fail "Slurm is not installed (run: $0 install)" || return 1
+  # By path: /usr/sbin is not on every user's PATH.
+  if [ ! -x /usr/sbin/slurmctld ] || [ ! -x /usr/sbin/slurmdbd ] || [ ! -x /usr/sbin/mariadbd ]; then
+    echo "slurm-cluster: Slurm is not installed (run: $0 install)" >&2
+    return 1
+  fi
   write_configs
   as_root install -d -o munge -g munge -m 0755 /run/munge
   # Debian's munge creates its key when installed; an older or stripped install may not.
-  as_root test -f /etc/munge/munge.key || as_root runuser -u munge -- mungekey --create
+  as_root test -f /etc/munge/munge.key || as_root /usr/sbin/runuser -u munge -- /usr/sbin/mungekey --create
   as_root install -d -o mysql -g mysql -m 0755 /run/mysqld
   as_root mkdir -p "$logs"
   as_root touch "$logs/mariadb.log"
   as_root chown mysql:mysql "$logs/mariadb.log"
-  start_daemon /run/munge/munged.pid runuser -u munge -- /usr/sbin/munged
+  start_daemon /run/munge/munged.pid /usr/sbin/runuser -u munge -- /usr/sbin/munged
   start_daemon /run/mysqld/mysqld.pid setsid --fork /usr/sbin/mariadbd --user=mysql --skip-networking \
     --pid-file=/run/mysqld/mysqld.pid --socket=/run/mysqld/mysqld.sock --log-error="$logs/mariadb.log"
   wait_for 60 as_root mysqladmin --socket=/run/mysqld/mysqld.sock ping || fail "MariaDB did not start" || return 1
-  start_daemon /run/slurmdbd.pid slurmdbd
+  start_daemon /run/slurmdbd.pid /usr/sbin/slurmdbd
   wait_for 60 sacctmgr --noheader show cluster || fail "slurmdbd did not start" || return 1
-  start_daemon /run/slurmctld.pid slurmctld
-  start_daemon /run/slurmd.pid slurmd
+  start_daemon /run/slurmctld.pid /usr/sbin/slurmctld
+  start_daemon /run/slurmd.pid /usr/sbin/slurmd
   wait_for 60 resume_node || fail "the Slurm node did not come up within 60 s" || return 1
   echo "slurm-cluster: Slurm is up ($(sinfo --noheader --format='partition %P, %D node, %c CPUs, %T'))"
 }

@@ -12,16 +12,17 @@ jobs=$(nproc)
 ctest --test-dir "$root/build" --label-exclude 'heavy|slurm' --output-on-failure --parallel "$jobs"
 
 # A machine where Slurm cannot be installed or started still runs every other test.
+# The trap stops whatever part of Slurm did start, even when ctest fails.
 slurm_log="$root/build/slurm-cluster.log"
+trap '"$root/scripts/slurm-cluster.sh" stop > /dev/null 2>&1' EXIT
 if "$root/scripts/slurm-cluster.sh" install > "$slurm_log" 2>&1 \
   && "$root/scripts/slurm-cluster.sh" start >> "$slurm_log" 2>&1; then
-  trap '"$root/scripts/slurm-cluster.sh" stop > /dev/null' EXIT
   ctest --test-dir "$root/build" --label-regex slurm --output-on-failure
-  "$root/scripts/slurm-cluster.sh" stop > /dev/null
-  trap - EXIT
 else
   echo "test.sh: the slurm tests did not run, Slurm could not be started here: $(tail -n 1 "$slurm_log") (all of it in $slurm_log)"
 fi
+"$root/scripts/slurm-cluster.sh" stop > /dev/null 2>&1
+trap - EXIT
 
 sanitize_dir="$root/build-sanitize"
 generator=()
