@@ -4,6 +4,7 @@
 #include <sys/wait.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <chrono>
 #include <cstdio>
@@ -54,27 +55,12 @@ pid_t start_case(const BatchCase& batch_case, const fs::path& folder, const Batc
   return process;
 }
 
-// Top-level scalar entries of the case's report.toml (points, cells, quality ...; the
-// tables after them, stage times and deformed meshes, repeat those names); the report
-// is optional: a failed case has none.
-std::map<std::string, std::string> read_report(const fs::path& path) {
-  std::map<std::string, std::string> report;
-  if (!fs::exists(path)) return report;
-  std::ifstream stream(path);
-  std::string line;
-  while (std::getline(stream, line)) {
-    if (line.empty() || line[0] == '#') continue;
-    if (line[0] == '[') break;
-    const auto equals = line.find('=');
-    if (equals == std::string::npos) continue;
-    auto trim = [](std::string text) {
-      const auto first = text.find_first_not_of(" \t\"");
-      const auto last = text.find_last_not_of(" \t\"\r");
-      return first == std::string::npos ? std::string() : text.substr(first, last - first + 1);
-    };
-    report[trim(line.substr(0, equals))] = trim(line.substr(equals + 1));
-  }
-  return report;
+// RFC 4180: a field with a comma, quote or line break goes in quotes, its quotes doubled.
+std::string csv_field(const std::string& text) {
+  if (text.find_first_of(",\"\r\n") == std::string::npos) return text;
+  std::string result = "\"";
+  for (char character : text) result += character == '"' ? std::string("\"\"") : std::string(1, character);
+  return result + "\"";
 }
 
 }  // namespace
@@ -121,6 +107,7 @@ std::vector<CaseResult> run_batch(const std::vector<BatchCase>& cases, const Bat
       result.status = "failed (signal " + std::to_string(WTERMSIG(status)) + ")";
     }
     result.report = read_report(result.folder / "report.toml");
+    if (result.exit_code != 0) result.error = last_error_line(result.folder / "log.txt");
     running.erase(found);
     ++finished;
     char seconds[32];
@@ -131,6 +118,42 @@ std::vector<CaseResult> run_batch(const std::vector<BatchCase>& cases, const Bat
   return results;
 }
 
+// Only the top-level entries (points, cells, quality ...): the tables after them, stage
+// times and deformed meshes, repeat those names.
+std::map<std::string, std::string> read_report(const fs::path& path) {
+  std::map<std::string, std::string> report;
+  if (!fs::exists(path)) return report;
+  std::ifstream stream(path);
+  std::string line;
+  while (std::getline(stream, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    if (line[0] == '[') break;
+    const auto equals = line.find('=');
+    if (equals == std::string::npos) continue;
+    auto trim = [](std::string text) {
+      const auto first = text.find_first_not_of(" \t\"");
+      const auto last = text.find_last_not_of(" \t\"\r");
+      return first == std::string::npos ? std::string() : text.substr(first, last - first + 1);
+    };
+    report[trim(line.substr(0, equals))] = trim(line.substr(equals + 1));
+  }
+  return report;
+}
+
+std::string last_error_line(const fs::path& path) {
+  std::ifstream stream(path);
+  std::string line;
+  std::string found;
+  while (std::getline(stream, line)) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    std::string lower = line;
+    std::transform(lower.begin(), lower.end(), lower.begin(),
+                   [](unsigned char character) { return static_cast<char>(std::tolower(character)); });
+    if (lower.find("error") != std::string::npos) found = line;
+  }
+  return found;
+}
+
 void write_summary(const fs::path& path, const std::vector<CaseResult>& results) {
   const std::vector<std::string> report_columns = {
       "points",     "hexahedra",           "prisms",          "pyramids",
@@ -139,7 +162,7 @@ void write_summary(const fs::path& path, const std::vector<CaseResult>& results)
     std::ofstream csv(temporary);
     csv << "case,status";
     for (const std::string& column : report_columns) csv << ',' << column;
-    csv << ",seconds,peak_memory_mib\n";
+    csv << ",seconds,peak_memory_mib,error\n";
     for (const CaseResult& result : results) {
       csv << result.name << ',' << result.status;
       for (const std::string& column : report_columns) {
@@ -147,8 +170,8 @@ void write_summary(const fs::path& path, const std::vector<CaseResult>& results)
         csv << ',' << (value == result.report.end() ? "" : value->second);
       }
       char numbers[64];
-      std::snprintf(numbers, sizeof numbers, ",%.2f,%.1f\n", result.seconds, result.peak_memory_kib / 1024.0);
-      csv << numbers;
+      std::snprintf(numbers, sizeof numbers, ",%.2f,%.1f,", result.seconds, result.peak_memory_kib / 1024.0);
+      csv << numbers << csv_field(result.error) << '\n';
     }
     if (!csv.flush()) throw Error(path.string() + ": cannot write summary");
   });

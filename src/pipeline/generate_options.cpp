@@ -189,6 +189,8 @@ GenerateOptions read_generate_options(config::Document& document) {
                                 "): " + stem);
     }
   }
+  // Cluster settings of a batch (`mixmesh batch --slurm`), read by the batch, not the mesh's.
+  root.optional_section("slurm");
   root.finish();
   return options;
 }

@@ -62,7 +62,7 @@ TEST(Batch, FailingAndCrashingCasesDoNotStopTheOthers) {
   write(folder / "case.sh",
         "config=$1; shift\n"
         "while [ $# -gt 0 ]; do case $1 in --report) report=$2; shift;; esac; shift; done\n"
-        "if grep -q fail \"$config\"; then echo 'config is bad' >&2; exit 3; fi\n"
+        "if grep -q fail \"$config\"; then echo 'mixmesh: error: config is bad' >&2; exit 3; fi\n"
         "if grep -q crash \"$config\"; then kill -9 $$; fi\n"
         "printf 'points = 42\\ndeformed_meshes = 2\\n\\n[stages]\\npoints = 7\\n\\n[[deform]]\\n"
         "min_scaled_jacobian = 0.5\\n' > \"$report\"\n");
@@ -88,7 +88,7 @@ TEST(Batch, FailingAndCrashingCasesDoNotStopTheOthers) {
   std::ifstream log(folder / "out" / "fail1" / "log.txt");
   std::string line;
   std::getline(log, line);
-  EXPECT_EQ(line, "config is bad");
+  EXPECT_EQ(line, "mixmesh: error: config is bad");
   EXPECT_GT(results[0].peak_memory_kib, 0);
 
   batch::write_summary(folder / "summary.csv", results);
@@ -96,7 +96,11 @@ TEST(Batch, FailingAndCrashingCasesDoNotStopTheOthers) {
   std::getline(summary, line);
   EXPECT_EQ(line,
             "case,status,points,hexahedra,prisms,pyramids,tetrahedra,min_scaled_jacobian,deformed_meshes,"
-            "deformed_min_scaled_jacobian,seconds,peak_memory_mib");
+            "deformed_min_scaled_jacobian,seconds,peak_memory_mib,error");
   std::getline(summary, line);
   EXPECT_EQ(line.rfind("good0,ok,42,,,,,,2,,", 0), 0u) << line;
+  EXPECT_EQ(line.back(), ',');  // no error line for a case that succeeded
+  std::getline(summary, line);
+  EXPECT_NE(line.find(",mixmesh: error: config is bad"), std::string::npos)
+      << line;  // the failed case's last error line
 }

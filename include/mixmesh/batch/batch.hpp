@@ -41,19 +41,28 @@ struct BatchOptions {
 
 struct CaseResult {
   std::string name;
-  std::string status;  // "ok", or "failed (exit N)" / "failed (signal N)"
+  std::string status;  // "ok", or "failed (exit N)" / "failed (signal N)"; "not finished" (Slurm)
   int exit_code = 0;
   double seconds = 0.0;
   long peak_memory_kib = 0;
   std::filesystem::path folder;
   std::map<std::string, std::string> report;  // scalar entries of report.toml
+  std::string error;                          // a failed case's last error line, from its log
 };
 
 std::vector<CaseResult> run_batch(const std::vector<BatchCase>& cases, const BatchOptions& options,
                                   const Log& log);
 
-// Summary CSV: case, status, points, cells by type, min scaled Jacobian, seconds,
-// peak memory; written atomically.
+// Top-level scalar entries of a case's report.toml; empty when there is none (a
+// failed case).
+std::map<std::string, std::string> read_report(const std::filesystem::path& path);
+
+// The last line of a log that contains "error" ("mixmesh: error: ...", "slurmstepd:
+// error: ... TIME LIMIT"), or "" when none does or there is no log.
+std::string last_error_line(const std::filesystem::path& path);
+
+// Summary CSV: case, status, points, cells by type, min scaled Jacobian, deformed
+// meshes, seconds, peak memory and the error line of a failed case; written atomically.
 void write_summary(const std::filesystem::path& path, const std::vector<CaseResult>& results);
 
 }  // namespace mixmesh::batch
