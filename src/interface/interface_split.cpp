@@ -265,7 +265,7 @@ void cap_cell(CellType type, std::size_t cell, const Index* nodes, unsigned oute
     // trailing edge, in a concave corner of the hull) keep their low height: taller,
     // they crossed the hull there.
     const double reach =
-        split_tried ? shortest : std::max(shortest, std::min(minimum_cap_reach * longest, 4.0 * shortest));
+        split_tried ? shortest : std::max(shortest, std::min(minimum_cap_reach * longest, 2.0 * shortest));
     const Vector3 normal = face_area_vector(out.points, corners, 4).normalized();
     const Index apex = static_cast<Index>(out.points.size());
     out.points.push_back(middle + cap_height * reach * normal);
