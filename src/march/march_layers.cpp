@@ -169,12 +169,8 @@ std::vector<std::vector<Vector3>> end_conormals(const Front& front, const std::v
     const auto first = static_cast<std::size_t>(f.columns[static_cast<std::size_t>(edge.corner)]);
     const auto second = static_cast<std::size_t>(f.columns[static_cast<std::size_t>((edge.corner + 1) % n)]);
     if (front.on_symmetry[first] && front.on_symmetry[second]) continue;
-    auto at = [&](int k) -> const Vector3& {
-      return points[static_cast<std::size_t>(f.columns[static_cast<std::size_t>((k + n) % n)])];
-    };
-    Vector3 area = Vector3::Zero();
-    for (int k = 0; k < n; ++k) area += at(k).cross(at(k + 1));
-    const Vector3 conormal = unit_or((at(edge.corner + 1) - at(edge.corner)).cross(area), Vector3::Zero());
+    const Vector3 area = face_area_vector(points, f.columns.data(), n);
+    const Vector3 conormal = unit_or((points[second] - points[first]).cross(area), Vector3::Zero());
     if (conormal.squaredNorm() == 0.0) continue;
     for (std::size_t column : {first, second})
       if (!on_wall[column]) conormals[column].push_back(conormal);
@@ -227,12 +223,9 @@ std::vector<Vector3> sheet_side_normals(const Front& front, const std::vector<Ve
   std::vector<Vector3> normal(points.size(), Vector3::Zero());
   for (const FrontFace& f : front.faces) {
     if (f.wall || f.wrap) continue;
-    const int n = f.corner_count;
-    Vector3 area = Vector3::Zero();
-    for (int k = 0; k < n; ++k)
-      area += points[static_cast<std::size_t>(f.columns[static_cast<std::size_t>(k)])].cross(
-          points[static_cast<std::size_t>(f.columns[static_cast<std::size_t>((k + 1) % n)])]);
-    for (int k = 0; k < n; ++k) normal[static_cast<std::size_t>(f.columns[static_cast<std::size_t>(k)])] += area;
+    const Vector3 area = face_area_vector(points, f.columns.data(), f.corner_count);
+    for (int k = 0; k < f.corner_count; ++k)
+      normal[static_cast<std::size_t>(f.columns[static_cast<std::size_t>(k)])] += area;
   }
   for (Vector3& v : normal) v = unit_or(v, Vector3::Zero());
   return normal;
@@ -243,7 +236,7 @@ std::vector<Vector3> sheet_side_normals(const Front& front, const std::vector<Ve
 // with the wake leaving from its middle) the wall's normal lies in the sheet's plane,
 // and the lines above and below would march along the same direction.
 Vector3 off_the_sheet(const Vector3& normal, const Vector3& sheet_normal) {
-  constexpr double least = 0.7071;  // sin 45 degrees
+  const double least = std::sqrt(0.5);  // sin 45 degrees
   const double along = normal.dot(sheet_normal);
   if (sheet_normal.squaredNorm() == 0.0 || along >= least) return normal;
   const Vector3 in_plane = normal - along * sheet_normal;
