@@ -196,7 +196,7 @@ FarFieldResult farfield(const FarFieldInput& input, const FarFieldOptions& optio
       local_input.metric_nodes.push_back(found->second);
       local_input.metrics.push_back(input.metrics[entry]);
     }
-    layers = farfield_parts::layer_points(local_input, footprint, symmetric, options);
+    layers = farfield_parts::layer_points(local_input, footprint, symmetric, hull_size, options);
     result.layer_points = layers.volume.size() + layers.plane.size();
     log.info("farfield: " + std::to_string(result.layer_points) + " layer points");
   }

@@ -42,15 +42,17 @@ std::vector<Triangle> symmetry_plane(double plane_y, const std::vector<Index>& r
                                      const std::vector<Vector3>& extra_points, const SizeField& size,
                                      double minimum_angle_degrees, std::vector<Vector3>& points);
 
-// Anisotropic layer points grown from the hull nodes (see farfield.hpp). Points on the
-// symmetry plane (from footprint nodes) are returned separately for the plane
-// triangulation.
+// Anisotropic layer points grown from the hull nodes (see farfield.hpp), each column
+// until its spacing reaches `isotropic_size` (per point of input.points: the isotropic
+// size the far field has at a hull node). Points on the symmetry plane (from footprint
+// nodes) are returned separately for the plane triangulation.
 struct LayerPoints {
   std::vector<Vector3> volume;
   std::vector<Vector3> plane;
 };
 LayerPoints layer_points(const FarFieldInput& input, const std::vector<std::array<Index, 2>>& footprint,
-                         bool symmetric, const FarFieldOptions& options);
+                         bool symmetric, const std::vector<double>& isotropic_size,
+                         const FarFieldOptions& options);
 
 // The candidates farther than ratio × size(candidate) from every one of `near`.
 std::vector<Vector3> points_beyond(const std::vector<Vector3>& candidates, const std::vector<Vector3>& near,

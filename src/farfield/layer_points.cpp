@@ -92,21 +92,11 @@ std::vector<Triangle3> hull_triangles(const std::vector<Vector3>& points, const 
   return triangles;
 }
 
-// Smallest spacing the metric asks for across the normal: 1/√μ with μ the largest
-// eigenvalue of the metric restricted to the tangent plane.
-double tangential_spacing(const Matrix3& metric, const Vector3& normal) {
-  const Vector3 first = normal.unitOrthogonal();
-  const Vector3 second = normal.cross(first);
-  Eigen::Matrix2d restricted;
-  restricted << first.dot(metric * first), first.dot(metric * second), second.dot(metric * first),
-      second.dot(metric * second);
-  return 1.0 / std::sqrt(Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(restricted).eigenvalues().maxCoeff());
-}
-
 }  // namespace
 
 LayerPoints layer_points(const FarFieldInput& input, const std::vector<std::array<Index, 2>>& footprint,
-                         bool symmetric, const FarFieldOptions& options) {
+                         bool symmetric, const std::vector<double>& isotropic_size,
+                         const FarFieldOptions& options) {
   std::map<Index, std::size_t> slot;  // hull node → position in the node lists below
   std::vector<Index> nodes;
   for (const auto& triangle : input.hull)
@@ -174,12 +164,16 @@ LayerPoints layer_points(const FarFieldInput& input, const std::vector<std::arra
   }
 
   // Columns: normal spacing from the metric (1/√(nᵀ M n)), growing until it reaches
-  // the tangential spacing, where the isotropic grading takes over.
+  // the isotropic size the far field has at the node, where the isotropic grading takes
+  // over. (The metric's smallest tangential spacing is no such limit: a cell as tall as
+  // its short side but ten times as long has isotropic tetrahedra ten times too tall
+  // above it, and on the ONERA M6 a fifth of the hull nodes, along the leading and
+  // trailing edges, got no point that way.)
   std::vector<Candidate> candidates;
   for (std::size_t position = 0; position < nodes.size(); ++position) {
     const Vector3& direction = normal[position];
     const Matrix3& node_metric = *metric[position];
-    const double tangential = tangential_spacing(node_metric, direction);
+    const double isotropic = isotropic_size[static_cast<std::size_t>(nodes[position])];
     // Over a thin part of the body (trailing edge, the wake's ends, the tip) a sphere
     // through a hull edge of length L cannot bulge far into the body: it rises about
     // L²/(8τ) above the hull, τ the thickness. A point lower than that lies in every
@@ -189,7 +183,7 @@ LayerPoints layer_points(const FarFieldInput& input, const std::vector<std::arra
         options.edge_protection * longest[position] * longest[position] / (8.0 * thickness[position]);
     double spacing = 1.0 / std::sqrt(direction.dot(node_metric * direction));
     double distance = 0.0;
-    for (int layer = 0; layer < options.maximum_layers && spacing < tangential;
+    for (int layer = 0; layer < options.maximum_layers && spacing < isotropic;
          ++layer, spacing *= options.layer_growth) {
       distance += spacing;
       if (distance < protected_height) continue;

@@ -78,18 +78,18 @@ InterfaceOptions read_interface_options(config::Section& table) {
 
 //   [farfield]
 //   shape = "sphere"           # or "box"
-//   sizing = "isotropic"       # or "anisotropic" (see docs/farfield.md for its limits)
+//   sizing = "anisotropic"     # or "isotropic" (see docs/farfield.md)
 //   radius = 20.0              # reference chords (sphere radius, box half-width)
 //   reference_chord = 0.0      # metres; 0: the wing's root chord
 //   farfield_size = 2.0        # edge length on the outer boundary, chords
 //   size_gradient = 0.25
 //   radius_edge_ratio = 1.5    # TetGen -q
-//   layer_growth = 1.25, maximum_layers = 40
+//   layer_growth = 1.25, maximum_layers = 1
 //   precondition = false       # see docs/farfield.md: true can invert slivers
 //   sweep = nan                # degrees; absent: estimated from the hull
 //   affine = "whitening"       # or "inverse" (Wild eq. 15) or "none"
 FarFieldOptions read_farfield_options(config::Section& table) {
-  FarFieldOptions options;
+  FarFieldOptions options = anisotropic_farfield();
   std::string shape = "sphere";
   table.read_choice("shape", shape, {"sphere", "box"});
   options.shape = shape == "box" ? FarFieldShape::box : FarFieldShape::sphere;

@@ -91,6 +91,7 @@ TEST(FarFieldRobustness, LayerPointsKeepClearOfHullEdgesOverThinParts) {
   add_layer_metrics(input, 0.125 / 20.0, 0.125);
   FarFieldOptions options = small_options();
   options.sizing = FarFieldSizing::anisotropic;
+  options.maximum_layers = 40;  // columns that reach above the protected height
   std::ostringstream said;
   const FarFieldResult result = farfield(input, options, Log(&said));
   // The stage prints the hull's metric edge-length distribution and both passes.

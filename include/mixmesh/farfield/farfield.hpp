@@ -18,10 +18,12 @@
 // linearly away from the hull). A self-intersecting boundary is located with -d and
 // reported as mixmesh::Error.
 //
-// Anisotropic sizing continues the layer growth in metric space: from every hull node,
-// points are placed along the smoothed outward normal at the normal spacing its metric
-// gives, growing by `layer_growth` until the spacing reaches the node's smallest
-// tangential spacing (the cell is isotropic), then the isotropic grading takes over.
+// Anisotropic sizing (the default of mixmesh::generate; it needs the hull's metrics)
+// continues the layer growth in metric space: from
+// every hull node, points are placed along the smoothed outward normal at the normal
+// spacing its metric gives, growing by `layer_growth`, for `maximum_layers` points or
+// until the spacing reaches the node's smallest tangential spacing (the cell is
+// isotropic); then the isotropic grading takes over.
 // A second TetGen run (no -q, sliver flips on) in the original coordinates takes the
 // layer points and the quality run's points away from them.
 #pragma once
@@ -43,7 +45,7 @@ enum class FarFieldSizing { isotropic, anisotropic };
 
 struct FarFieldOptions {
   FarFieldShape shape = FarFieldShape::sphere;
-  FarFieldSizing sizing = FarFieldSizing::isotropic;
+  FarFieldSizing sizing = FarFieldSizing::isotropic;  // generate's default is anisotropic
   double reference_chord = 0.0;          // 0: the hull's extent in x
   double radius_in_chords = 20.0;        // sphere radius or box half-width
   double farfield_size_in_chords = 2.0;  // edge length on the outer boundary
@@ -54,7 +56,11 @@ struct FarFieldOptions {
   double plane_minimum_angle = 25.0;     // degrees, quality bound of the symmetry-plane triangles
   // Anisotropic sizing.
   double layer_growth = 1.25;  // ratio of successive normal spacings
-  int maximum_layers = 40;
+  // Points per column. One layer continuing the hull's cells gives the tetrahedra on the
+  // hull the cells' size and orientation; the isotropic grading does the rest. Taller
+  // columns add points and flat tetrahedra without changing those on the hull (ONERA M6:
+  // docs/farfield.md, "How many layers").
+  int maximum_layers = 1;
   double minimum_metric_distance = 0.6;  // inserted points closer than this (metric) are dropped
   // Layer points lower than edge_protection × L²/(8τ) over the hull (L the longest hull
   // edge at the node, τ the body's thickness below it) are dropped: they would make

@@ -34,11 +34,19 @@ struct OutputOptions {
   bool merge_wall_markers = true;
 };
 
+inline FarFieldOptions anisotropic_farfield() {
+  FarFieldOptions options;
+  options.sizing = FarFieldSizing::anisotropic;
+  return options;
+}
+
 struct GenerateOptions {
   SurfaceSetup surface;  // the wing ([wing], [surface]) and/or imported patches
   MarchOptions march;
   InterfaceOptions interface;
-  FarFieldOptions farfield;
+  // Anisotropic tetrahedra by default (Wild §II.F; the stage's own default is isotropic,
+  // as it can run without the hull's metrics).
+  FarFieldOptions farfield = anisotropic_farfield();
   SliverOptions slivers;  // the post-pass over the assembled tetrahedra
   OutputOptions output;
   // [[deform]] steps: each deforms the generated mesh (mesh-then-deform pipelines).
