@@ -1,6 +1,8 @@
 // measure_quality and check_mesh: per-cell metrics in parallel, then their statistics.
 #include "mixmesh/quality/quality.hpp"
 
+#include "mixmesh/mesh/cell_geometry.hpp"
+
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
@@ -9,6 +11,7 @@
 
 #include "mixmesh/core/error.hpp"
 #include "mixmesh/core/log.hpp"
+#include "mixmesh/mesh/cell_geometry.hpp"
 #include "mixmesh/quality/cell_quality.hpp"
 #include "validity_parts.hpp"
 
@@ -80,19 +83,29 @@ void measure_cells(const MixedMesh& mesh, std::vector<PendingEntry>& pending) {
     const std::size_t count = mesh.cell_count(type);
     if (count == 0) continue;
     const bool tetrahedra = type == CellType::tetrahedron;
-    std::vector<double> jacobian(count), skew(count), ratio(count), slivers(tetrahedra ? count : 0);
+    std::vector<double> jacobian(count), skew(count), ratio(count), slivers(tetrahedra ? count : 0),
+        dihedral(tetrahedra ? count : 0);
     for_each_index(count, [&](std::size_t cell) {
       const Index* nodes = mesh.cell(type, cell);
       jacobian[cell] = scaled_jacobian(type, mesh.points, nodes);
       skew[cell] = skewness(type, mesh.points, nodes);
       ratio[cell] = aspect_ratio(type, mesh.points, nodes);
-      if (tetrahedra) slivers[cell] = sliver(mesh.points, nodes);
+      if (tetrahedra) {
+        slivers[cell] = sliver(mesh.points, nodes);
+        auto at = [&](int corner) -> const Vector3& { return mesh.points[static_cast<std::size_t>(nodes[corner])]; };
+        dihedral[cell] = largest_dihedral_degrees(at(0), at(1), at(2), at(3));
+      }
     });
     const std::string entity(name(type));
     pending.push_back({"scaled_jacobian", entity, std::move(jacobian)});
     pending.push_back({"skewness", entity, std::move(skew)});
     pending.push_back({"aspect_ratio", entity, std::move(ratio)});
-    if (tetrahedra) pending.push_back({"sliver", entity, std::move(slivers)});
+    if (tetrahedra) {
+      pending.push_back({"sliver", entity, std::move(slivers)});
+      // Near 180 for a flat tetrahedron; right or acute for a stretched, well-aligned
+      // one, which the scaled Jacobian calls bad all the same.
+      pending.push_back({"largest_dihedral", entity, std::move(dihedral)});
+    }
   }
 }
 

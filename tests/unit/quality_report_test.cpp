@@ -23,6 +23,11 @@ TEST(QualityReport, CheckMeshCombinesValidityAndQuality) {
   }
   EXPECT_NE(report.quality.find("sliver", "tetrahedron"), nullptr);
   EXPECT_EQ(report.quality.find("sliver", "hexahedron"), nullptr);
+  const QualityEntry* dihedral = report.quality.find("largest_dihedral", "tetrahedron");
+  ASSERT_NE(dihedral, nullptr);
+  EXPECT_GT(dihedral->statistics.max, 70.0);
+  EXPECT_LT(dihedral->statistics.max, 180.0);
+  EXPECT_EQ(report.quality.find("largest_dihedral", "pyramid"), nullptr);
   // Three interior faces (hex-pyramid, pyramid-tet, tet-prism); no column of layers.
   EXPECT_EQ(report.quality.find("non_orthogonality", "interior faces")->statistics.count, 3u);
   EXPECT_EQ(report.quality.find("growth_ratio", "prism"), nullptr);
