@@ -340,8 +340,17 @@ Front build_front(const SurfaceMesh& surface) {
       if (side == 0) across[node].push_back({f, k});
     }
   }
-  // Nodes on a free edge of a sheet: a sheet edge of one sheet face that no wall face uses.
+  // Nodes on a free edge of a sheet: a sheet edge of one sheet face that no wall face
+  // uses and that does not lie in the symmetry plane (the plane closes a sheet's root
+  // edge: the wall faces across the sheet there, a blunt base's, join the lines on
+  // either side like the others; as a free edge they got a line of their own, and the
+  // layers did not close round it on the plane).
   std::vector<char> on_sheet_free_edge(point_count, 0);
+  auto on_plane = [&](Index node) {
+    return surface.symmetry_tolerance >= 0.0 &&
+           std::abs(surface.points[static_cast<std::size_t>(node)].y() - surface.symmetry_y) <=
+               surface.symmetry_tolerance;
+  };
   {
     std::unordered_map<std::uint64_t, int> sheet_uses;
     auto edge_key = [](Index a, Index b) {
@@ -354,7 +363,7 @@ Front build_front(const SurfaceMesh& surface) {
         sheet_uses[key] += face.wake ? 1 : 1000;
       }
     for (const auto& [key, uses] : sheet_uses)
-      if (uses == 1) {
+      if (uses == 1 && !(on_plane(static_cast<Index>(key >> 32)) && on_plane(static_cast<Index>(key & 0xffffffffu)))) {
         on_sheet_free_edge[static_cast<std::size_t>(key >> 32)] = 1;
         on_sheet_free_edge[static_cast<std::size_t>(key & 0xffffffffu)] = 1;
       }

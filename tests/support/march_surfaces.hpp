@@ -93,6 +93,7 @@ struct TestWing {
   std::string naca = "0012";
   int chordwise_cells = 64;
   int spanwise_cells = 16;
+  bool blunt_base = false;  // the open NACA trailing edge closed by a base
 };
 
 inline SurfaceMesh wing(const TestWing& test) {
@@ -106,7 +107,11 @@ inline SurfaceMesh wing(const TestWing& test) {
   options.chordwise_cells = test.chordwise_cells;
   options.spanwise_cells = test.spanwise_cells;
   options.wake.length = 2.0;
-  return generate_wing_surface(classic_wing(planform, naca_airfoil(test.naca)), options);
+  NacaOptions naca;
+  naca.closed_trailing_edge = !test.blunt_base;
+  WingDefinition definition = classic_wing(planform, naca_airfoil(test.naca, naca));
+  if (test.blunt_base) definition.blunt_trailing_edge = TrailingEdge::base;
+  return generate_wing_surface(definition, options);
 }
 
 // Counts cells that are not valid by cell_shape.

@@ -6,6 +6,8 @@
 
 #include "march_surfaces.hpp"
 #include "mixmesh/march/march_metrics.hpp"
+#include "mixmesh/mesh/face_connectivity.hpp"
+#include "mixmesh/quality/validity.hpp"
 
 namespace mixmesh {
 namespace {
@@ -93,6 +95,26 @@ TEST(MarchWing, ThickWing) {
   march_surfaces::TestWing wing;
   wing.naca = "0021";
   check_wing(wing);
+}
+
+// A blunt base with the wake leaving from its middle: at the root the sheet's edge lies
+// in the symmetry plane, which closes it, so the base faces there join the lines above
+// and below the sheet like the rest of the base; as a free edge of the sheet they got
+// a line of their own and the layers' faces on the plane did not close round it.
+TEST(MarchWing, BluntBaseLayersCloseOnTheSymmetryPlane) {
+  march_surfaces::TestWing wing;
+  wing.blunt_base = true;
+  wing.chordwise_cells = 48;
+  wing.spanwise_cells = 8;
+  const SurfaceMesh surface = march_surfaces::wing(wing);
+  MarchOptions options = wing_options();
+  options.spacing.layer_count = 4;
+  const BoundaryLayer layer = march_layers(surface, options);
+  EXPECT_EQ(march_surfaces::invalid_cell_count(layer.mesh), 0);
+  const FaceConnectivity faces = match_faces(layer.mesh);
+  EXPECT_TRUE(faces.conforming());
+  EXPECT_TRUE(faces.untagged_boundary.empty());
+  EXPECT_TRUE(validate(layer.mesh).valid());
 }
 
 TEST(MarchWing, WakeEndLinesStayInTheEndPlaneAndTheTipEdgeStaysFree) {
