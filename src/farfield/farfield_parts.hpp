@@ -75,13 +75,20 @@ struct TetgenInput {
   unsigned time_limit_seconds = 0;  // 0: none
 };
 
+// What TetGen's intersection test (-d) found: how many boundary triangles intersect
+// and the centre of the first.
+struct IntersectionFound {
+  std::size_t count = 0;
+  Vector3 first = Vector3::Zero();
+};
+
 struct TetgenOutput {
   std::vector<Vector3> points;  // the input points first, in order, then TetGen's
   std::vector<std::array<Index, 4>> tetrahedra;
 };
 
-// Throws mixmesh::Error naming the stage and a location for a self-intersecting or
-// otherwise unusable boundary.
+// Throws mixmesh::Error naming the stage and a location for an unusable boundary,
+// HullIntersectionError for a self-intersecting one.
 TetgenOutput run_tetgen(const TetgenInput& input);
 
 // Whether most tetrahedra have negative volume as numbered (TetGen's convention), so

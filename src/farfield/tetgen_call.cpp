@@ -71,26 +71,25 @@ void run(const std::string& switches, tetgenio& in, tetgenio& out, bool sliver_f
   tetrahedralize(&behaviour, &in, &out);
 }
 
-// Asks TetGen (-d) which boundary triangles intersect and names the first one.
-std::string intersection_location(const TetgenInput& input) {
+// Asks TetGen (-d) which boundary triangles intersect: their count (0: none, or the
+// test failed) and the centre of the first.
+IntersectionFound find_intersections(const TetgenInput& input) {
   tetgenio in, out;
   fill(in, input, false);
   try {
     run("pdQz", in, out);
   } catch (int) {
-    return "";
+    return {};
   }
-  if (out.numberoftrifaces <= 0 || out.trifacelist == nullptr) return "";
-  Vector3 centre = Vector3::Zero();
+  if (out.numberoftrifaces <= 0 || out.trifacelist == nullptr) return {};
+  IntersectionFound found;
+  found.count = static_cast<std::size_t>(out.numberoftrifaces);
   for (int corner = 0; corner < 3; ++corner) {
     const int node = out.trifacelist[corner];
-    centre +=
+    found.first +=
         Vector3(out.pointlist[3 * node], out.pointlist[3 * node + 1], out.pointlist[3 * node + 2]) / 3.0;
   }
-  std::ostringstream text;
-  text << " (" << out.numberoftrifaces << " intersecting boundary triangles, the first near "
-       << point_text(centre) << ")";
-  return text.str();
+  return found;
 }
 
 // The tetrahedralisation itself; throws mixmesh::Error for the failures TetGen
@@ -163,6 +162,19 @@ bool receive(isolated_detail::Channel& channel, TetgenOutput& output) {
   return true;
 }
 
+void send(isolated_detail::Channel& channel, const IntersectionFound& found) {
+  channel.write_vector(std::vector<double>{static_cast<double>(found.count), found.first.x(), found.first.y(),
+                                           found.first.z()});
+}
+
+bool receive(isolated_detail::Channel& channel, IntersectionFound& found) {
+  std::vector<double> values;
+  if (!channel.read_vector(values) || values.size() != 4) return false;
+  found.count = static_cast<std::size_t>(values[0]);
+  found.first = Vector3(values[1], values[2], values[3]);
+  return true;
+}
+
 namespace {
 
 double volume6(const std::vector<Vector3>& points, const std::array<Index, 4>& tetrahedron) {
@@ -206,13 +218,17 @@ TetgenOutput run_tetgen(const TetgenInput& input) {
   } catch (const Error&) {
     // Where TetGen's own test (-d) finds intersecting boundary triangles, that is
     // the cause to report, whatever the failure looked like.
-    std::string intersections;
+    IntersectionFound found;
     try {
-      intersections = run_isolated<std::string>("TetGen's intersection test",
-                                                [&] { return intersection_location(input); });
+      found = run_isolated<IntersectionFound>("TetGen's intersection test",
+                                              [&] { return find_intersections(input); });
     } catch (const Error&) {
     }
-    if (!intersections.empty()) throw Error("farfield: the boundary intersects itself" + intersections);
+    if (found.count > 0)
+      throw HullIntersectionError("farfield: the boundary intersects itself (" + std::to_string(found.count) +
+                                      " intersecting boundary triangles, the first near " +
+                                      point_text(found.first) + ")",
+                                  found.first);
     throw;
   }
 }

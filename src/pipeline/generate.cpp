@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <fstream>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -84,6 +85,21 @@ double min_scaled_jacobian(const MixedMesh& mesh) {
 
 }  // namespace
 
+namespace {
+
+// What to change when the layers leave a hull the far field cannot fill.
+std::string layer_hint(const MarchReport& march) {
+  if (march.stopped.empty())
+    return "; check that the wing's sections do not intersect and that the wake does not cross the wing";
+  const StoppedRegion& first = march.stopped.front();
+  return "; the layers stopped early on " + std::to_string(march.stopped_faces) + " faces (the first at layer " +
+         std::to_string(first.layer) + " near " + point_text(first.location) +
+         "): fewer or thinner layers (march.layers, march.growth_rate) or a finer surface there keep the "
+         "layers clear of each other";
+}
+
+}  // namespace
+
 GenerateResult generate(const GenerateOptions& options, const Log& log) {
   Stopwatch watch;
   const SurfaceMesh surface = [&] {
@@ -108,101 +124,123 @@ GenerateResult generate_from_surface(const SurfaceMesh& surface, const GenerateO
   GenerateReport& report = result.report;
   report.surface_elements = to_mixed_mesh(surface).face_count();
 
-  BoundaryLayer layers =
-      run_stage("march", report, [&] { return march_layers(surface, options.march, nullptr); });
-  report.march = layers.report;
-  log.info("march: " + seconds_text(report.stages.back().seconds) + ", " +
-           std::to_string(layers.report.layers_completed) + "/" +
-           std::to_string(layers.report.layers_requested) + " layers, " +
-           std::to_string(layers.mesh.cell_count(CellType::hexahedron)) + " hexahedra, " +
-           std::to_string(layers.mesh.cell_count(CellType::prism)) + " prisms, first spacing " +
-           std::to_string(layers.report.first_spacing) + " m, thickness " +
-           std::to_string(layers.report.total_thickness) + " m");
-  if (layers.report.stopped_faces > 0) {
-    const StoppedRegion& lowest = layers.report.stopped.front();  // sorted by layer
-    log.warning("march: growth stopped early on " + std::to_string(layers.report.stopped_faces) + " faces (" +
-                std::to_string(layers.report.stopped_nodes) + " nodes, " +
-                std::to_string(layers.report.blended_faces) + " of them to slope down to the others); the lowest " +
-                std::to_string(lowest.faces) + " at layer " + std::to_string(lowest.layer) + " near " +
-                point_text(lowest.location) + ", " + std::to_string(lowest.thickness_lost) +
-                " m of the wall stack lost");
-  }
-
-  const InterfaceResult interface = run_stage("interface", report, [&] {
-    const OuterLayer outer = pipeline_detail::outer_layer(
-        layers.mesh, {options.march.outer_hull_marker, options.march.hull_side_marker});
-    InterfaceOptions interface_options = options.interface;
-    // The cells the march tagged for capping, under whatever name it tagged them.
-    if (!interface_options.capped_marker.empty())
-      interface_options.capped_marker = options.march.hull_side_marker;
-    return split_interface(layers.mesh, outer, interface_options);
-  });
-  log.info("interface: " + seconds_text(report.stages.back().seconds) + ", " +
-           std::to_string(interface.pyramids) + " pyramids, " + std::to_string(interface.tetrahedra) +
-           " tetrahedra, hull of " + std::to_string(interface.hull.size()) + " triangles");
-
+  // March, interface, metrics and far field; where the hull handed to the far field
+  // intersects itself, the layers round the crossing are lowered and the four run again.
+  MarchOptions march_options = options.march;
+  BoundaryLayer layers;
+  InterfaceResult interface;
   FarFieldInput farfield_input;
-  if (options.farfield.sizing == FarFieldSizing::anisotropic) {
-    run_stage("metric", report, [&] {
-      std::set<Index> hull_nodes;
-      for (const auto& triangle : interface.hull) hull_nodes.insert(triangle.begin(), triangle.end());
-      // Nodes of the layers take the metrics of the layer cells before the split (the
-      // hexahedra's own shape); points the split added (cap apexes) take those of the
-      // cells around them after it.
-      const Index layer_points = static_cast<Index>(layers.mesh.points.size());
-      std::vector<Index> layer_nodes, added_nodes;
-      for (Index node : hull_nodes) (node < layer_points ? layer_nodes : added_nodes).push_back(node);
-      farfield_input.metric_nodes = layer_nodes;
-      farfield_input.metric_nodes.insert(farfield_input.metric_nodes.end(), added_nodes.begin(),
-                                         added_nodes.end());
-      farfield_input.metrics = node_metrics(layers.mesh, layer_nodes);
-      const std::vector<Matrix3> added_metrics = node_metrics(interface.mesh, added_nodes);
-      farfield_input.metrics.insert(farfield_input.metrics.end(), added_metrics.begin(), added_metrics.end());
-      return 0;
-    });
-    log.info("metric: " + seconds_text(report.stages.back().seconds) + ", " +
-             std::to_string(farfield_input.metric_nodes.size()) + " hull node metrics");
-  }
-  farfield_input.points = interface.mesh.points;
-  farfield_input.holes = body_points(surface);
-  farfield_input.hull = interface.hull;
-  FarFieldOptions farfield_options = options.farfield;
-  farfield_options.symmetry_y = surface.symmetry_y;
-  // Far-field sizes are in chords of the wing, not of the hull, whose extent in x
-  // includes the wake.
-  if (farfield_options.reference_chord <= 0.0 && options.surface.wing)
-    farfield_options.reference_chord = options.surface.wing->stations.front().chord;
-  FarFieldResult farfield_result = run_stage("farfield", report, [&] {
-    try {
-      return farfield(farfield_input, farfield_options, log);
-    } catch (const Error& error) {
-      // A hull the far field cannot fill comes from the layers: say where they stopped
-      // and what to change, not only what TetGen found.
-      const std::string message = error.what();
-      if (message.find("intersect") == std::string::npos && message.find("hull edge") == std::string::npos &&
-          message.find("hull is open") == std::string::npos)
-        throw;
-      std::string hint;
-      if (!layers.report.stopped.empty()) {
-        const StoppedRegion& first = layers.report.stopped.front();
-        hint = "; the layers stopped early on " + std::to_string(layers.report.stopped_faces) +
-               " faces (the first at layer " + std::to_string(first.layer) + " near " +
-               point_text(first.location) +
-               "): fewer or thinner layers (march.layers, march.growth_rate) or a finer surface there "
-               "keep the layers clear of each other";
-      } else {
-        hint = "; check that the wing's sections do not intersect and that the wake does not cross the wing";
-      }
-      throw Error(message + hint);
+  std::optional<FarFieldResult> farfield_result;
+  const std::size_t first_stage = report.stages.size();
+  for (int attempt = 0; !farfield_result; ++attempt) {
+    // A retry's stage timings replace those of the attempt before.
+    report.stages.erase(report.stages.begin() + static_cast<std::ptrdiff_t>(first_stage), report.stages.end());
+    layers = run_stage("march", report, [&] { return march_layers(surface, march_options, nullptr); });
+    report.march = layers.report;
+    log.info("march: " + seconds_text(report.stages.back().seconds) + ", " +
+             std::to_string(layers.report.layers_completed) + "/" +
+             std::to_string(layers.report.layers_requested) + " layers, " +
+             std::to_string(layers.mesh.cell_count(CellType::hexahedron)) + " hexahedra, " +
+             std::to_string(layers.mesh.cell_count(CellType::prism)) + " prisms, first spacing " +
+             std::to_string(layers.report.first_spacing) + " m, thickness " +
+             std::to_string(layers.report.total_thickness) + " m");
+    if (layers.report.stopped_faces > 0) {
+      const StoppedRegion& lowest = layers.report.stopped.front();  // sorted by layer
+      log.warning("march: growth stopped early on " + std::to_string(layers.report.stopped_faces) + " faces (" +
+                  std::to_string(layers.report.stopped_nodes) + " nodes, " +
+                  std::to_string(layers.report.blended_faces) + " of them to slope down to the others); the lowest " +
+                  std::to_string(lowest.faces) + " at layer " + std::to_string(lowest.layer) + " near " +
+                  point_text(lowest.location) + ", " + std::to_string(lowest.thickness_lost) +
+                  " m of the wall stack lost");
     }
-  });
+
+    interface = run_stage("interface", report, [&] {
+      const OuterLayer outer = pipeline_detail::outer_layer(
+          layers.mesh, {options.march.outer_hull_marker, options.march.hull_side_marker});
+      InterfaceOptions interface_options = options.interface;
+      // The cells the march tagged for capping, under whatever name it tagged them.
+      if (!interface_options.capped_marker.empty())
+        interface_options.capped_marker = options.march.hull_side_marker;
+      return split_interface(layers.mesh, outer, interface_options);
+    });
+    log.info("interface: " + seconds_text(report.stages.back().seconds) + ", " +
+             std::to_string(interface.pyramids) + " pyramids, " + std::to_string(interface.tetrahedra) +
+             " tetrahedra, hull of " + std::to_string(interface.hull.size()) + " triangles");
+
+    farfield_input = FarFieldInput();
+    if (options.farfield.sizing == FarFieldSizing::anisotropic) {
+      run_stage("metric", report, [&] {
+        std::set<Index> hull_nodes;
+        for (const auto& triangle : interface.hull) hull_nodes.insert(triangle.begin(), triangle.end());
+        // Nodes of the layers take the metrics of the layer cells before the split (the
+        // hexahedra's own shape); points the split added (cap apexes) take those of the
+        // cells around them after it.
+        const Index layer_points = static_cast<Index>(layers.mesh.points.size());
+        std::vector<Index> layer_nodes, added_nodes;
+        for (Index node : hull_nodes) (node < layer_points ? layer_nodes : added_nodes).push_back(node);
+        farfield_input.metric_nodes = layer_nodes;
+        farfield_input.metric_nodes.insert(farfield_input.metric_nodes.end(), added_nodes.begin(),
+                                           added_nodes.end());
+        farfield_input.metrics = node_metrics(layers.mesh, layer_nodes);
+        const std::vector<Matrix3> added_metrics = node_metrics(interface.mesh, added_nodes);
+        farfield_input.metrics.insert(farfield_input.metrics.end(), added_metrics.begin(), added_metrics.end());
+        return 0;
+      });
+      log.info("metric: " + seconds_text(report.stages.back().seconds) + ", " +
+               std::to_string(farfield_input.metric_nodes.size()) + " hull node metrics");
+    }
+    farfield_input.points = interface.mesh.points;
+    farfield_input.holes = body_points(surface);
+    farfield_input.hull = interface.hull;
+    FarFieldOptions farfield_options = options.farfield;
+    farfield_options.symmetry_y = surface.symmetry_y;
+    // Far-field sizes are in chords of the wing, not of the hull, whose extent in x
+    // includes the wake.
+    if (farfield_options.reference_chord <= 0.0 && options.surface.wing)
+      farfield_options.reference_chord = options.surface.wing->stations.front().chord;
+    std::optional<Vector3> crossing;
+    farfield_result = run_stage("farfield", report, [&]() -> std::optional<FarFieldResult> {
+      try {
+        return farfield(farfield_input, farfield_options, log);
+      } catch (const HullIntersectionError& error) {
+        if (attempt < options.hull_retries) {
+          crossing = error.location;
+          return std::nullopt;
+        }
+        throw Error(error.what() + layer_hint(layers.report));
+      } catch (const Error& error) {
+        // A hull the far field cannot fill comes from the layers: say where they stopped
+        // and what to change, not only what TetGen found.
+        const std::string message = error.what();
+        if (message.find("intersect") == std::string::npos && message.find("hull edge") == std::string::npos &&
+            message.find("hull is open") == std::string::npos)
+          throw;
+        throw Error(message + layer_hint(layers.report));
+      }
+    });
+    if (!farfield_result) {
+      // The hull intersects itself where the layers came too close to each other (a
+      // strongly tapered tip's trailing edge, a stop the blending could not smooth): the
+      // columns round the crossing stop lower and slope down to it, and the stages run
+      // again. Each retry reaches further and lower.
+      ForcedStop stop;
+      stop.centre = *crossing;
+      stop.radius = 3.0 * (attempt + 1) * std::max(layers.report.total_thickness, 1e-12);
+      stop.layer = std::max(1, march_options.spacing.layer_count - 4 * (attempt + 1));
+      march_options.forced_stops.push_back(stop);
+      log.warning("farfield: the hull intersects itself near " + point_text(*crossing) +
+                  "; the layers within " + std::to_string(stop.radius) + " m of it stop by layer " +
+                  std::to_string(stop.layer) + " (retry " + std::to_string(attempt + 1) + " of " +
+                  std::to_string(options.hull_retries) + ")");
+    }
+  }
   log.info("farfield: " + seconds_text(report.stages.back().seconds) + ", " +
-           std::to_string(farfield_result.mesh.cell_count(CellType::tetrahedron)) + " tetrahedra, " +
-           std::to_string(farfield_result.mesh.points.size() - farfield_result.input_point_count) +
+           std::to_string(farfield_result->mesh.cell_count(CellType::tetrahedron)) + " tetrahedra, " +
+           std::to_string(farfield_result->mesh.points.size() - farfield_result->input_point_count) +
            " new points");
 
   result.mesh = run_stage("assemble", report, [&] {
-    return pipeline_detail::assemble(interface.mesh, options.interface.hull_marker, farfield_result,
+    return pipeline_detail::assemble(interface.mesh, options.interface.hull_marker, *farfield_result,
                                      wall_marker_names(surface), options.output.merge_wall_markers);
   });
   {
@@ -227,8 +265,8 @@ GenerateResult generate_from_surface(const SurfaceMesh& surface, const GenerateO
   report.prisms = result.mesh.cell_count(CellType::prism);
   report.pyramids = result.mesh.cell_count(CellType::pyramid);
   report.min_scaled_jacobian = min_scaled_jacobian(result.mesh);
-  farfield_result.mesh = MixedMesh();
-  report.farfield_summary = std::move(farfield_result);
+  farfield_result->mesh = MixedMesh();
+  report.farfield_summary = std::move(*farfield_result);
   report.seconds = total.seconds();
   return result;
 }

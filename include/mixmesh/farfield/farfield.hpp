@@ -33,6 +33,7 @@
 #include <string>
 #include <vector>
 
+#include "mixmesh/core/error.hpp"
 #include "mixmesh/core/log.hpp"
 #include "mixmesh/mesh/mixed_mesh.hpp"
 #include "mixmesh/metric/metric.hpp"
@@ -42,6 +43,14 @@ namespace mixmesh {
 
 enum class FarFieldShape { sphere, box };
 enum class FarFieldSizing { isotropic, anisotropic };
+
+// The boundary handed to TetGen intersects itself (TetGen's own test, -d, found it);
+// `location` is the centre of the first intersecting boundary triangle.
+class HullIntersectionError : public Error {
+ public:
+  HullIntersectionError(const std::string& message, const Vector3& where) : Error(message), location(where) {}
+  Vector3 location;
+};
 
 struct FarFieldOptions {
   FarFieldShape shape = FarFieldShape::sphere;

@@ -35,6 +35,15 @@ enum class LayerSolve {
   sparse   // per outer iteration: weights frozen, one sparse solve of the whole layer
 };
 
+// Columns near `centre` stop by `layer` at the latest, and their neighbours slope down
+// to them as round any stop (how generate lowers the layers where the hull it built
+// intersected itself).
+struct ForcedStop {
+  Vector3 centre = Vector3::Zero();
+  double radius = 0.0;  // surface faces whose centroid lies within it
+  int layer = 0;
+};
+
 struct MarchOptions {
   SpacingOptions spacing;
   MarchMethod method = MarchMethod::smoothed;
@@ -77,6 +86,7 @@ struct MarchOptions {
   // column stops.
   int step_reductions = 3;
   bool check_self_intersection = true;
+  std::vector<ForcedStop> forced_stops;
   // Marker names of the boundary faces the march creates (wall faces keep their
   // patch names).
   std::string symmetry_marker = "symmetry";

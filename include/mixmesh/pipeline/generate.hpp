@@ -48,6 +48,10 @@ struct GenerateOptions {
   // as it can run without the hull's metrics).
   FarFieldOptions farfield = anisotropic_farfield();
   SliverOptions slivers;  // the post-pass over the assembled tetrahedra
+  // Times the layers are lowered round a crossing of the hull and the stages from the
+  // march to the far field run again (see generate.md, "When the hull intersects
+  // itself"); 0: the first crossing is the error.
+  int hull_retries = 3;
   OutputOptions output;
   // [[deform]] steps: each deforms the generated mesh (mesh-then-deform pipelines).
   std::vector<deform::DeformStep> deform;
