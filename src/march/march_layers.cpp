@@ -244,6 +244,28 @@ Vector3 off_the_sheet(const Vector3& normal, const Vector3& sheet_normal) {
   return std::sqrt(1.0 - least * least) * in_plane.normalized() + least * sheet_normal;
 }
 
+// The last layer's step of each line: at least `fraction` of the shortest edge of the
+// active front faces at the line (MarchOptions::outer_layer_height). Lines on no active
+// face keep their step.
+void raise_to_outer_height(const Front& front, const std::vector<Vector3>& current,
+                           const std::vector<char>& face_active, double fraction, std::vector<double>& step) {
+  std::vector<double> shortest(step.size(), std::numeric_limits<double>::infinity());
+  for (std::size_t face = 0; face < front.faces.size(); ++face) {
+    if (!face_active[face]) continue;
+    const FrontFace& front_face = front.faces[face];
+    for (int k = 0; k < front_face.corner_count; ++k) {
+      const auto a = static_cast<std::size_t>(front_face.columns[static_cast<std::size_t>(k)]);
+      const auto b = static_cast<std::size_t>(
+          front_face.columns[static_cast<std::size_t>((k + 1) % front_face.corner_count)]);
+      const double length = (current[a] - current[b]).norm();
+      shortest[a] = std::min(shortest[a], length);
+      shortest[b] = std::min(shortest[b], length);
+    }
+  }
+  for (std::size_t c = 0; c < step.size(); ++c)
+    if (std::isfinite(shortest[c])) step[c] = std::max(step[c], fraction * shortest[c]);
+}
+
 // The step of a line towards a symmetry plane fades where the layers grow as thick as
 // the line is far from the plane: the lines in the plane march in it, so a neighbour
 // that keeps moving towards it (the upper side of a wing or wake with dihedral) closes
@@ -407,6 +429,8 @@ BoundaryLayer march_layers(const SurfaceMesh& surface, const MarchOptions& optio
     std::vector<double> step(column_count);
     for (std::size_t c = 0; c < column_count; ++c)
       step[c] = (wake_steps[c].empty() ? steps : wake_steps[c])[static_cast<std::size_t>(layer)];
+    if (layer + 1 == static_cast<int>(steps.size()) && options.outer_layer_height > 0.0)
+      raise_to_outer_height(front, current, face_active, options.outer_layer_height, step);
     std::vector<Vector3> predicted_direction(column_count);
     for (std::size_t c = 0; c < column_count; ++c) {
       const Vector3 before = unit_or(current[c] - previous[c], normal[c]);

@@ -89,11 +89,15 @@ MarchMetrics measure_march(const BoundaryLayer& layer, const SurfaceMesh& surfac
       normal.y() = 0.0;  // the wall normal of a node in the symmetry plane lies in it
     deviations.push_back(degrees(angle_between(point(c, 1) - point(c, 0), normal)));
     const std::size_t levels = layer.column_points[column].size();
+    // A full column's outermost step is MarchOptions::outer_layer_height's, not the
+    // growth law's: its jump is left out.
+    const std::size_t law_levels =
+        levels == static_cast<std::size_t>(layer.report.layers_requested) + 1 ? levels - 1 : levels;
     for (std::size_t k = 1; k + 1 < levels; ++k) {
       const Vector3 below = point(c, k) - point(c, k - 1);
       const Vector3 above = point(c, k + 1) - point(c, k);
       turns.push_back(degrees(angle_between(below, above)));
-      if (k + 2 < levels) {
+      if (k + 2 < law_levels) {
         const Vector3 further = point(c, k + 2) - point(c, k + 1);
         const double jump = std::abs(further.norm() / above.norm() - above.norm() / below.norm());
         metrics.maximum_growth_jump = std::max(metrics.maximum_growth_jump, jump);

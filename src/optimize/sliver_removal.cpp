@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
+#include <vector>
 
 #include "mixmesh/core/error.hpp"
 #include "mixmesh/mesh/cell_geometry.hpp"
@@ -72,12 +74,16 @@ class SliverRemoval {
     std::size_t done = 0;
     for (const auto& [q, t] : work) {
       if (!complex_.alive(t) || quality(complex_, t) >= target) continue;
-      if (remove_an_edge(t)) {
-        ++report.edge_removals;
-      } else if (flip_a_face(t)) {
-        ++report.face_flips;
-      } else if (split_an_edge(t)) {
-        ++report.edge_splits;
+      // Every removal, flip and split of t is weighed and the best taken: the first
+      // that helps is often a poor one (an edge removal that joins a flat outer cell's
+      // centre to a far-field point where the split of the cell's diagonal gives right
+      // angles).
+      best_.reset();
+      remove_an_edge(t);
+      flip_a_face(t);
+      split_an_edge(t);
+      if (best_) {
+        apply(*best_, report);
       } else if (options_.smooth_points && smooth_a_point(t)) {
         ++report.smoothed_points;
       } else {
@@ -89,10 +95,51 @@ class SliverRemoval {
   }
 
  private:
+  enum class Operation { edge_removal, face_flip, edge_split };
+
+  // A local change: tetrahedra that go, tetrahedra that replace them (node -1: the
+  // new point of a split) and the quality of both sets.
+  struct Change {
+    Operation operation = Operation::edge_removal;
+    std::vector<int> removed;
+    std::vector<Tetrahedron> added;
+    std::vector<int> regions;
+    std::optional<Vector3> new_point;
+    Tally before, after;
+
+    // Ranked by the worst tetrahedron it leaves, then by how much it lowers the shortfall.
+    bool preferred_to(const Change& other) const {
+      if (after.worst > other.after.worst + 1e-6) return true;
+      if (after.worst < other.after.worst - 1e-6) return false;
+      return before.shortfall - after.shortfall > other.before.shortfall - other.after.shortfall + 1e-6;
+    }
+  };
+
+  void consider(Change&& change) {
+    if (!change.after.better_than(change.before)) return;
+    if (!best_ || change.preferred_to(*best_)) best_ = std::move(change);
+  }
+
+  void apply(const Change& change, SliverReport& report) {
+    const Index added = change.new_point ? complex_.add_point(*change.new_point) : -1;
+    for (int cell : change.removed) complex_.remove(cell);
+    for (std::size_t k = 0; k < change.added.size(); ++k) {
+      Tetrahedron piece = change.added[k];
+      for (Index& node : piece)
+        if (node < 0) node = added;
+      complex_.add(piece, change.regions[k]);
+    }
+    switch (change.operation) {
+      case Operation::edge_removal: ++report.edge_removals; break;
+      case Operation::face_flip: ++report.face_flips; break;
+      case Operation::edge_split: ++report.edge_splits; break;
+    }
+  }
+
   // Edge removal (Shewchuk's formulation): the best triangulation of the ring polygon,
   // by the dynamic programme over its sub-polygons, each triangle giving one
   // tetrahedron with either end of the edge.
-  bool remove_an_edge(int t) {
+  void remove_an_edge(int t) {
     static constexpr std::array<std::array<int, 2>, 6> edges{{{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}}};
     const Tetrahedron nodes = complex_.nodes(t);
     for (const auto& edge : edges) {
@@ -142,19 +189,19 @@ class SliverRemoval {
         pending.push_back({i, k});
         pending.push_back({k, j});
       }
-      Tally replaced;
-      for (const Tetrahedron& piece : pieces) replaced.add(quality(complex_, piece), target());
-      if (!replaced.better_than(old)) continue;
-      const int region = complex_.region(t);
-      for (int cell : ring_) complex_.remove(cell);
-      for (const Tetrahedron& piece : pieces) complex_.add(piece, region);
-      return true;
+      Change change;
+      change.operation = Operation::edge_removal;
+      change.before = old;
+      for (const Tetrahedron& piece : pieces) change.after.add(quality(complex_, piece), target());
+      change.removed = ring_;
+      change.regions.assign(pieces.size(), complex_.region(t));
+      change.added = std::move(pieces);
+      consider(std::move(change));
     }
-    return false;
   }
 
   // 2 -> 3: tetrahedra (f, d) and (f, e) sharing face f become three round edge (d, e).
-  bool flip_a_face(int t) {
+  void flip_a_face(int t) {
     const Tetrahedron nodes = complex_.nodes(t);
     for (int skip = 0; skip < 4; ++skip) {
       std::array<Index, 3> face{};
@@ -172,22 +219,19 @@ class SliverRemoval {
               tetrahedron_volume6(point(d), point(e), point(ring[0]), point(ring[1])) <
           0.0)
         std::swap(ring[1], ring[2]);
-      Tally old, replaced;
-      old.add(quality(complex_, t), target());
-      old.add(quality(complex_, other), target());
-      for (int k = 0; k < 3; ++k)
-        replaced.add(quality(complex_, Tetrahedron{d, e, ring[static_cast<std::size_t>(k)],
-                                                   ring[static_cast<std::size_t>((k + 1) % 3)]}),
-                     target());
-      if (!replaced.better_than(old)) continue;
-      const int region = complex_.region(t);
-      complex_.remove(t);
-      complex_.remove(other);
-      for (int k = 0; k < 3; ++k)
-        complex_.add({d, e, ring[static_cast<std::size_t>(k)], ring[static_cast<std::size_t>((k + 1) % 3)]}, region);
-      return true;
+      Change change;
+      change.operation = Operation::face_flip;
+      change.before.add(quality(complex_, t), target());
+      change.before.add(quality(complex_, other), target());
+      change.removed = {t, other};
+      for (int k = 0; k < 3; ++k) {
+        change.added.push_back(
+            {d, e, ring[static_cast<std::size_t>(k)], ring[static_cast<std::size_t>((k + 1) % 3)]});
+        change.after.add(quality(complex_, change.added.back()), target());
+      }
+      change.regions.assign(3, complex_.region(t));
+      consider(std::move(change));
     }
-    return false;
   }
 
   // Edge split: a sliver's four points lie almost in a plane, two of its edges crossing
@@ -195,7 +239,7 @@ class SliverRemoval {
   // tetrahedron round that edge in two. Where the other edge belongs to a pyramid (the
   // interface's split of a flat outer cell: the cell's centre just under the hull,
   // right below the middle of the outer quad's diagonal) this is the only way out.
-  bool split_an_edge(int t) {
+  void split_an_edge(int t) {
     static constexpr std::array<std::array<int, 4>, 6> edges{
         {{0, 1, 2, 3}, {0, 2, 1, 3}, {0, 3, 1, 2}, {1, 2, 0, 3}, {1, 3, 0, 2}, {2, 3, 0, 1}}};
     const Tetrahedron nodes = complex_.nodes(t);
@@ -210,42 +254,42 @@ class SliverRemoval {
       const double denominator = uu * vv - uv * uv;
       if (!(denominator > 1e-12 * uu * vv)) continue;
       const double s = std::clamp((uv * vw - vv * uw) / denominator, 0.2, 0.8);
-      const Vector3 middle = point(a) + s * u;
-      Tally old;
-      for (int cell : ring_) old.add(quality(complex_, cell), target());
+      const Vector3 crossing = point(a) + s * u;
+      // The new point only tetrahedra use, so it may leave the edge: where the sliver
+      // lies on a shallow fold of faces it cannot cross (a hull valley between two
+      // layer cells), a point on the edge stays in the fold; towards the middle of the
+      // ring's apexes it lifts out of it.
+      Vector3 apex_middle = Vector3::Zero();
+      for (Index apex : apexes_) apex_middle += point(apex) / static_cast<double>(apexes_.size());
+      Change base;
+      base.operation = Operation::edge_split;
+      for (int cell : ring_) base.before.add(quality(complex_, cell), target());
       // Each tetrahedron round the edge gives two: the new point in place of c, and in
       // place of a (the same orientation).
-      std::vector<Tetrahedron> pieces;
       for (int cell : ring_)
         for (Index replaced : {c, a}) {
           Tetrahedron piece = complex_.nodes(cell);
           for (Index& node : piece)
             if (node == replaced) node = -1;
-          pieces.push_back(piece);
+          base.added.push_back(piece);
+          base.regions.push_back(complex_.region(cell));
         }
-      complex_.points().push_back(middle);
-      const auto scratch = static_cast<Index>(complex_.points().size() - 1);
-      Tally replaced;
-      for (Tetrahedron piece : pieces) {
-        for (Index& node : piece)
-          if (node < 0) node = scratch;
-        replaced.add(quality(complex_, piece), target());
+      base.removed = ring_;
+      for (const double lift : {0.0, 0.25, 0.5}) {
+        const Vector3 position = crossing + lift * (apex_middle - crossing);
+        Change change = base;
+        complex_.points().push_back(position);
+        const auto scratch = static_cast<Index>(complex_.points().size() - 1);
+        for (Tetrahedron piece : change.added) {
+          for (Index& node : piece)
+            if (node < 0) node = scratch;
+          change.after.add(quality(complex_, piece), target());
+        }
+        complex_.points().pop_back();
+        change.new_point = position;
+        consider(std::move(change));
       }
-      complex_.points().pop_back();
-      if (!replaced.better_than(old)) continue;
-      const Index added = complex_.add_point(middle);
-      std::vector<int> regions;
-      for (int cell : ring_) regions.push_back(complex_.region(cell));
-      for (int cell : ring_) complex_.remove(cell);
-      for (std::size_t k = 0; k < pieces.size(); ++k) {
-        Tetrahedron piece = pieces[k];
-        for (Index& node : piece)
-          if (node < 0) node = added;
-        complex_.add(piece, regions[k / 2]);
-      }
-      return true;
     }
-    return false;
   }
 
   // Moves a free point of t to the best of a few trial positions: towards the mean of
@@ -309,6 +353,7 @@ class SliverRemoval {
   SliverOptions options_;
   std::vector<Index> apexes_;
   std::vector<int> ring_;
+  std::optional<Change> best_;
 };
 
 void measure(const TetrahedronComplex& complex, double target, double& largest, std::size_t& above,

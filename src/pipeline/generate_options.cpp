@@ -26,6 +26,7 @@ using config::Bounds;
 //   sweeps = 12, orthogonal_layers = 3, release_layers = 20, direction_memory = 0.5
 //   step_reductions = 3, maximum_turn = 1.0 (degrees per layer; 0: no limit),
 //   wake_spread = 6.0 (degrees: wake layers thicken downstream; 0: the wall's steps),
+//   outer_layer_height = 0.25 (the last layer at least this times the shortest front edge),
 //   self_intersection_check = true
 MarchOptions read_march_options(config::Section& table) {
   MarchOptions options;
@@ -58,6 +59,7 @@ MarchOptions read_march_options(config::Section& table) {
   table.read("step_reductions", options.step_reductions, Bounds::at_least(0));
   table.read("maximum_turn", options.maximum_turn_degrees, Bounds::between(0, 180));
   table.read("wake_spread", options.wake_spread_degrees, Bounds{0.0, 45.0, false, true});
+  table.read("outer_layer_height", options.outer_layer_height, Bounds::between(0, 1));
   table.read("self_intersection_check", options.check_self_intersection);
   table.finish();
   return options;

@@ -65,6 +65,24 @@ TEST(MarchLayers, FlatPlateGivesStraightHexColumnsWithTheGrowthLaw) {
   expect_closed_and_tagged(mesh);
 }
 
+// The outermost layer stands at least outer_layer_height times the shortest front edge
+// high (the plate's edges are 0.1 and 0.125 long); the layers below keep the growth law.
+TEST(MarchLayers, OutermostLayerIsRaisedToAFractionOfTheShortestEdge) {
+  const SurfaceMesh plate = march_surfaces::flat_plate(11, 9);
+  for (const double fraction : {0.0, 0.25}) {
+    MarchOptions options = plate_options(4, 0.001, 1.2);
+    options.outer_layer_height = fraction;
+    const BoundaryLayer layer = march_layers(plate, options);
+    EXPECT_EQ(invalid_cell_count(layer.mesh), 0);
+    for (const auto& column : layer.column_points) {
+      ASSERT_EQ(column.size(), 5u);
+      auto z = [&](std::size_t k) { return layer.mesh.points[static_cast<std::size_t>(column[k])].z(); };
+      EXPECT_NEAR(z(3) - z(2), 0.001 * 1.44, 1e-12);
+      EXPECT_NEAR(z(4) - z(3), fraction > 0.0 ? 0.25 * 0.1 : 0.001 * 1.728, 1e-12);
+    }
+  }
+}
+
 TEST(MarchLayers, CylinderLinesStayRadial) {
   const int ni = 17, nj = 9;
   const SurfaceMesh cylinder = march_surfaces::cylinder_patch(ni, nj);

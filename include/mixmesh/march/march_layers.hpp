@@ -66,6 +66,13 @@ struct MarchOptions {
   // lines that start on a wall keep the wall's steps. 0: every line keeps the wall's
   // steps to the sheet's end.
   double wake_spread_degrees = 6.0;
+  // The outermost layer is at least this fraction of the shortest front edge at its
+  // line high. The interface splits that layer's cells about their centre, and the two
+  // tetrahedra on an outer quad are as flat as the cell is against the quad's short
+  // side: on a cell a twentieth as high as that side their largest dihedral angle is
+  // about 175 deg, at a quarter about 165 deg. 0: the outermost layer keeps the growth
+  // law's step.
+  double outer_layer_height = 0.25;
   // Safety: halve the step of the nodes of a failed cell this many times before the
   // column stops.
   int step_reductions = 3;

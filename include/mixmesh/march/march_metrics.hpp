@@ -25,7 +25,8 @@ struct MarchMetrics {
   double maximum_normal_deviation_degrees = 0.0;
   double percentile99_normal_deviation_degrees = 0.0;
   double fraction_within_2_degrees = 0.0;
-  // Largest change of the ratio of successive segment lengths along one line.
+  // Largest change of the ratio of successive segment lengths along one line (of a
+  // full line, below its outermost segment: that one is MarchOptions::outer_layer_height).
   double maximum_growth_jump = 0.0;
   // Angle between successive segments of a line.
   double maximum_line_turn_degrees = 0.0;

@@ -7,13 +7,15 @@
 // or acute dihedral angles only, while the scaled Jacobian would call it bad.
 //
 // Operations, each taken only where it raises the smallest value of 180 degrees less
-// the largest dihedral angle over the tetrahedra it replaces:
+// the largest dihedral angle over the tetrahedra it replaces; of the removals, flips and
+// splits of a sliver the one leaving the best worst tetrahedron is taken:
 //   - edge removal: the tetrahedra round an interior edge (3 to `maximum_ring`) are
 //     replaced by the best triangulation of their ring (3 -> 2, 4 -> 4, ... flips);
 //   - face flip: two tetrahedra sharing a face become three round the segment between
 //     their apexes (2 -> 3);
-//   - edge split: a new point on an interior edge of the sliver, where it passes the
-//     opposite edge, cuts every tetrahedron round the edge in two;
+//   - edge split: a new point where an interior edge of the sliver passes the opposite
+//     edge, or lifted from there towards the ring's apexes, cuts every tetrahedron
+//     round the edge in two;
 //   - point smoothing: a point used by tetrahedra only and on no boundary face moves to
 //     the best of a few trial positions.
 // Faces shared with a pyramid, prism or hexahedron and boundary faces are never
