@@ -354,8 +354,6 @@ void add_body_motion(const IdwInput& input, const IdwOptions& options, std::size
         std::vector<double> weights(static_cast<std::size_t>(reference_count));
         std::vector<NearestDistance> nearest_distances(trees.size(),
                                                        NearestDistance{options.distance_accuracy});
-        std::vector<Index> other_indices(static_cast<std::size_t>(options.reference_count));
-        std::vector<double> other_squared(static_cast<std::size_t>(options.reference_count));
         for (std::size_t i = range.begin(); i != range.end(); ++i) {
           const Vector3& point = input.volume_points[i];
           const int found = static_cast<int>(trees[body_index]->knnSearch(
@@ -368,17 +366,17 @@ void add_body_motion(const IdwInput& input, const IdwOptions& options, std::size
           double distance_rest = std::numeric_limits<double>::infinity();
           for (std::size_t other = 0; other < trees.size(); ++other) {
             if (other == body_index || !trees[other]) continue;
-            if (incidences[other].empty()) {
-              distance_rest = std::min(distance_rest, nearest_distances[other].distance(*trees[other], point));
+            const double node_distance = nearest_distances[other].distance(*trees[other], point);
+            if (incidences[other].empty() || options.distance_accuracy > 0.0) {
+              distance_rest = std::min(distance_rest, node_distance);
               continue;
             }
-            const std::size_t other_count =
-                std::min(other_indices.size(), input.bodies[other].positions.size());
-            const int other_found = static_cast<int>(
-                trees[other]->knnSearch(point.data(), other_count, other_indices.data(), other_squared.data()));
+            // The faces around the nearest node: the other bodies are far from the nodes
+            // that move most (ψ small), where a ripple of d_rest matters least.
+            const Index nearest_node = nearest_distances[other].previous_index;
+            const double nearest_squared = node_distance * node_distance;
             distance_rest = std::min(distance_rest, surface_distance(input.bodies[other], incidences[other], point,
-                                                                     other_indices.data(), other_squared.data(),
-                                                                     other_found));
+                                                                     &nearest_node, &nearest_squared, 1));
           }
           const double psi = std::isinf(distance_rest) || distance_body == 0.0
                                  ? 0.0
