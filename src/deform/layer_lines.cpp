@@ -2,6 +2,8 @@
 // (layer_lines.hpp says why).
 #include "deform/layer_lines.hpp"
 
+#include <Eigen/Geometry>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -357,8 +359,22 @@ void transport_layer_lines(const LayerLines& lines, const BoundaryMotion& bounda
     const std::size_t base = static_cast<std::size_t>(base_index);
     const std::size_t top = static_cast<std::size_t>(lines.top[node]);
     if (top == node) return;
+    // A sheet's base moves by the method, not by the motion, and the rotation fitted to
+    // its star is only as good as the method's field across the star: at the ONERA M6
+    // wake's tip edge the sheet nodes differ by 5 cm over 5.6 mm of span under ARA, and
+    // the fit tilted the lines above them. The line's turn is that fit corrected by the
+    // shortest arc that takes the fitted chord (base to top) to the method's chord:
+    // the line's own direction from the method, the fit's twist about it. A rigid motion
+    // is kept exactly (the fitted chord is then the moved chord).
+    Eigen::Matrix3d line_turn = turn[base];
+    if (boundary.roles[base] != NodeRole::prescribed) {
+      const Vector3 fitted_chord = turn[base] * (original[top] - original[base]);
+      const Vector3 moved_chord = method[top] - method[base];
+      if (fitted_chord.norm() > 0.0 && moved_chord.norm() > 0.0)
+        line_turn = Eigen::Quaterniond::FromTwoVectors(fitted_chord, moved_chord).toRotationMatrix() * turn[base];
+    }
     auto rigid = [&](std::size_t point) -> Vector3 {
-      return method[base] + turn[base] * (original[point] - original[base]);
+      return method[base] + line_turn * (original[point] - original[base]);
     };
     const double share = lines.height[node] / lines.height[top];
     moved[node] = rigid(node) + share * (method[top] - rigid(top));
