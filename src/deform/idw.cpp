@@ -18,6 +18,7 @@
 #include "mixmesh/core/error.hpp"
 #include "mixmesh/deform/idw_rigid_fit.hpp"
 #include "mixmesh/deform/idw_tree.hpp"
+#include "deform/wall_faces.hpp"
 
 namespace mixmesh::deform {
 
@@ -110,6 +111,18 @@ void validate(const IdwInput& input, const IdwOptions& options) {
       check_finite(body.positions[j], describe(body, b) + " node " + std::to_string(j));
       if (body.moving)
         check_finite(body.displacements[j], describe(body, b) + " displacement " + std::to_string(j));
+    }
+    for (std::size_t f = 0; f < body.faces.size(); ++f) {
+      int corners = 0;
+      for (Index node : body.faces[f]) {
+        if (node < 0) continue;
+        if (static_cast<std::size_t>(node) >= count)
+          throw Error("idw: " + describe(body, b) + " face " + std::to_string(f) + " names node " +
+                      std::to_string(node) + " of " + std::to_string(count));
+        ++corners;
+      }
+      if (corners < 2)
+        throw Error("idw: " + describe(body, b) + " face " + std::to_string(f) + " has fewer than 2 nodes");
     }
     for (std::size_t j = 0; j < body.rotations.size(); ++j) {
       const Eigen::Matrix3d& rotation = body.rotations[j];
@@ -217,6 +230,51 @@ std::vector<std::size_t> morton_order(const std::vector<Vector3>& points) {
   return order;
 }
 
+// The faces of a body around each of its nodes (CSR), for the distance to its surface.
+struct FaceIncidence {
+  std::vector<std::size_t> offsets;
+  std::vector<std::uint32_t> faces;
+  bool empty() const { return faces.empty(); }
+};
+
+FaceIncidence face_incidence(const IdwBody& body) {
+  FaceIncidence incidence;
+  if (body.faces.empty()) return incidence;
+  incidence.offsets.assign(body.positions.size() + 1, 0);
+  for (const auto& face : body.faces)
+    for (Index node : face)
+      if (node >= 0) ++incidence.offsets[static_cast<std::size_t>(node) + 1];
+  for (std::size_t node = 0; node < body.positions.size(); ++node)
+    incidence.offsets[node + 1] += incidence.offsets[node];
+  incidence.faces.resize(incidence.offsets.back());
+  std::vector<std::size_t> fill(incidence.offsets.begin(), incidence.offsets.end() - 1);
+  for (std::size_t f = 0; f < body.faces.size(); ++f)
+    for (Index node : body.faces[f])
+      if (node >= 0) incidence.faces[fill[static_cast<std::size_t>(node)]++] = static_cast<std::uint32_t>(f);
+  return incidence;
+}
+
+// Distance from `point` to the body's surface: the nearest of the faces around the
+// `count` nearest nodes `nearest` (at squared distances `squared`), never more than the
+// nearest node's distance. Without faces, the nearest node's distance.
+double surface_distance(const IdwBody& body, const FaceIncidence& incidence, const Vector3& point,
+                        const Index* nearest, const double* squared, int count) {
+  double best = std::sqrt(squared[0]);
+  if (incidence.empty() || best == 0.0) return best;
+  Vector3 corners[4];
+  for (int k = 0; k < count; ++k) {
+    const std::size_t node = static_cast<std::size_t>(nearest[k]);
+    for (std::size_t slot = incidence.offsets[node]; slot < incidence.offsets[node + 1]; ++slot) {
+      const auto& face = body.faces[incidence.faces[slot]];
+      int corner_count = 0;
+      for (Index corner : face)
+        if (corner >= 0) corners[corner_count++] = body.positions[static_cast<std::size_t>(corner)];
+      best = std::min(best, detail::point_face_distance(point, corners, corner_count));
+    }
+  }
+  return best;
+}
+
 struct TreeStatistics {
   std::size_t cluster_terms = 0;
   std::size_t node_terms = 0;
@@ -282,7 +340,8 @@ void deform_simple(const IdwInput& input, const IdwOptions& options, IdwResult& 
 
 // Eq. (2–4) for one moving body at every volume point, added to result.displacements.
 void add_body_motion(const IdwInput& input, const IdwOptions& options, std::size_t body_index,
-                     const std::vector<std::unique_ptr<KdTree>>& trees, const IdwBodyReport& exponents,
+                     const std::vector<std::unique_ptr<KdTree>>& trees,
+                     const std::vector<FaceIncidence>& incidences, const IdwBodyReport& exponents,
                      FitDimension dimension, std::vector<Vector3>& displacements) {
   const IdwBody& body = input.bodies[body_index];
   const int reference_count = static_cast<int>(
@@ -300,11 +359,24 @@ void add_body_motion(const IdwInput& input, const IdwOptions& options, std::size
           const int found = static_cast<int>(trees[body_index]->knnSearch(
               point.data(), static_cast<std::size_t>(reference_count), indices.data(), squared.data()));
           // ψ: 0 on this body, 1 on any other body (Melville; reconstructed form).
-          const double distance_body = std::sqrt(squared[0]);
+          // With faces, the distances are to the surfaces (faces around the nearest nodes),
+          // smooth between the nodes; otherwise to the nearest nodes.
+          const double distance_body =
+              surface_distance(body, incidences[body_index], point, indices.data(), squared.data(), found);
           double distance_rest = std::numeric_limits<double>::infinity();
           for (std::size_t other = 0; other < trees.size(); ++other) {
             if (other == body_index || !trees[other]) continue;
-            distance_rest = std::min(distance_rest, nearest_distances[other].distance(*trees[other], point));
+            const double node_distance = nearest_distances[other].distance(*trees[other], point);
+            if (incidences[other].empty() || options.distance_accuracy > 0.0) {
+              distance_rest = std::min(distance_rest, node_distance);
+              continue;
+            }
+            // The faces around the nearest node: the other bodies are far from the nodes
+            // that move most (ψ small), where a ripple of d_rest matters least.
+            const Index nearest_node = nearest_distances[other].previous_index;
+            const double nearest_squared = node_distance * node_distance;
+            distance_rest = std::min(distance_rest, surface_distance(input.bodies[other], incidences[other], point,
+                                                                     &nearest_node, &nearest_squared, 1));
           }
           const double psi = std::isinf(distance_rest) || distance_body == 0.0
                                  ? 0.0
@@ -357,6 +429,8 @@ void deform_rotation(const IdwInput& input, const IdwOptions& options, IdwResult
     trees[b]->buildIndex();
   }
   const FitDimension dimension = fit_dimension(input.bodies);
+  std::vector<FaceIncidence> incidences;
+  for (const IdwBody& body : input.bodies) incidences.push_back(face_incidence(body));
   for (std::size_t b = 0; b < input.bodies.size(); ++b) {
     const IdwBody& body = input.bodies[b];
     if (!body.moving || body.positions.empty()) continue;
@@ -364,7 +438,7 @@ void deform_rotation(const IdwInput& input, const IdwOptions& options, IdwResult
     const bool still = std::all_of(body.displacements.begin(), body.displacements.end(),
                                    [](const Vector3& u) { return u.isZero(0.0); });
     if (still) continue;
-    add_body_motion(input, options, b, trees, result.bodies.back(), dimension, result.displacements);
+    add_body_motion(input, options, b, trees, incidences, result.bodies.back(), dimension, result.displacements);
   }
 }
 

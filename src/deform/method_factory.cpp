@@ -1,5 +1,6 @@
 // Methods by name, and motion files with their method table.
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "mixmesh/config/config.hpp"
@@ -30,7 +31,14 @@ class IdwMethod : public DeformationMethod {
     fixed.moving = false;
     for (int body = 0; body < body_count; ++body)
       input.bodies[static_cast<std::size_t>(body)].name = "body " + std::to_string(body + 1);
+    // Per mesh node: its body set (the fixed set last) and its index there.
+    std::vector<int> node_set(mesh.points.size(), -1);
+    std::vector<Index> node_slot(mesh.points.size(), -1);
     for (std::size_t node = 0; node < mesh.points.size(); ++node) {
+      if (boundary.roles[node] == NodeRole::prescribed) {
+        node_set[node] = boundary.body[node] < 0 ? body_count : boundary.body[node];
+        node_slot[node] = static_cast<Index>(input.bodies[static_cast<std::size_t>(node_set[node])].positions.size());
+      }
       if (boundary.roles[node] != NodeRole::prescribed) {
         volume_nodes.push_back(static_cast<Index>(node));
         input.volume_points.push_back(mesh.points[node]);
@@ -50,6 +58,27 @@ class IdwMethod : public DeformationMethod {
                                                        : Vector3::UnitZ())
                                      .toRotationMatrix());
     }
+    // The boundary faces whose nodes all lie on one set: its surface, for the distances
+    // of the rotation form's ψ.
+    auto add_face = [&](const Index* nodes, int count) {
+      const int set = node_set[static_cast<std::size_t>(nodes[0])];
+      if (set < 0) return;
+      std::array<Index, 4> face{-1, -1, -1, -1};
+      for (int k = 0; k < count; ++k) {
+        const std::size_t node = static_cast<std::size_t>(nodes[k]);
+        if (node_set[node] != set) return;
+        face[static_cast<std::size_t>(k)] = node_slot[node];
+      }
+      input.bodies[static_cast<std::size_t>(set)].faces.push_back(face);
+    };
+    for (FaceType type : {FaceType::triangle, FaceType::quad}) {
+      const FaceBlock& block = mesh.faces(type);
+      const int stride = type == FaceType::triangle ? 3 : 4;
+      for (std::size_t first = 0; first + static_cast<std::size_t>(stride) <= block.nodes.size(); first += stride)
+        add_face(block.nodes.data() + first, stride);
+    }
+    for (std::size_t first = 0; first + 2 <= mesh.boundary_edges.nodes.size(); first += 2)
+      add_face(mesh.boundary_edges.nodes.data() + first, 2);
     input.bodies.erase(std::remove_if(input.bodies.begin(), input.bodies.end(),
                                       [](const IdwBody& body) { return body.positions.empty(); }),
                        input.bodies.end());

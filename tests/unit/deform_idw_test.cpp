@@ -219,6 +219,45 @@ TEST(IdwRotationForm, EachBodyCarriesItsOwnNeighbourhood) {
   ASSERT_EQ(result.bodies.size(), 2u);
 }
 
+TEST(IdwRotationForm, FaceDistancesMakePsiSmoothBetweenNodes) {
+  // A plate of 1 × 1 quads in z = 0 translated in z, a fixed plate at z = 4. A point
+  // above a node and one above the middle of a quad, both at height 0.3: with the
+  // surface given as faces both are 0.3 from it and move alike; with nodes alone the
+  // point over the quad's middle is 0.76 from the plate and moves less (the ripple that
+  // folded flat pyramids over a plunging wing).
+  IdwBody plate;
+  plate.name = "plate";
+  IdwBody lid;
+  lid.name = "lid";
+  lid.moving = false;
+  const int n = 9;
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      plate.positions.emplace_back(i - 4.0, j - 4.0, 0.0);
+      plate.displacements.emplace_back(0.0, 0.0, 0.5);
+      lid.positions.emplace_back(i - 4.0, j - 4.0, 4.0);
+    }
+  for (int j = 0; j + 1 < n; ++j)
+    for (int i = 0; i + 1 < n; ++i) {
+      const Index corner = j * n + i;
+      plate.faces.push_back({corner, corner + 1, corner + n + 1, corner + n});
+      lid.faces.push_back({corner, corner + 1, corner + n + 1, -1});
+      lid.faces.push_back({corner, corner + n + 1, corner + n, -1});
+    }
+  IdwInput input;
+  input.volume_points = {Vector3(0.0, 0.0, 0.3), Vector3(0.5, 0.5, 0.3)};
+  input.bodies = {plate, lid};
+  const IdwResult with_faces = idw_deform(input);
+  EXPECT_NEAR(with_faces.displacements[0].z(), 0.5 * (1.0 - 0.3 / 4.0), 1e-12);
+  EXPECT_NEAR(with_faces.displacements[1].z(), with_faces.displacements[0].z(), 1e-12);
+  for (IdwBody& body : input.bodies) body.faces.clear();
+  const IdwResult nodes_only = idw_deform(input);
+  EXPECT_GT(nodes_only.displacements[0].z() - nodes_only.displacements[1].z(), 0.01);
+
+  input.bodies[0].faces = {{0, 1, 200, -1}};
+  EXPECT_THROW(idw_deform(input), Error);  // a face naming a node the body does not have
+}
+
 TEST(IdwExponents, PureRotationPicksSrTwo) {
   const Eigen::Matrix3d rotation = Eigen::AngleAxisd(0.3, Vector3::UnitY()).toRotationMatrix();
   // About the centroid of the nodes: a rotation about another point also translates it.

@@ -12,7 +12,8 @@
 //             Evaluated exactly (O(V·B)) or by a tree code (O(V log B)).
 //   rotation  per moving body, u_i = u^T (1 − ψ)^st + u^R (1 − ψ)^sr (eq. 2–4) with the
 //             reference nodes of the body nearest to x_i, a least-squares rigid fit of
-//             their motion, and ψ = d_body / (d_body + d_rest) (reconstructed).
+//             their motion, and ψ = d_body / (d_body + d_rest) (reconstructed), the
+//             distances to the nearest face of each body where faces are given.
 //
 // Q: Why does the rotation form sum over moving bodies?
 // A: Eq. (2) is written for one moving boundary; ψ of body b counts every other body
@@ -22,6 +23,7 @@
 
 #include <Eigen/Core>
 
+#include <array>
 #include <cstddef>
 #include <limits>
 #include <optional>
@@ -40,6 +42,11 @@ struct IdwBody {
   // Optional #B rotations of the surface around each node (orthonormal, det +1). When
   // present the rotation form uses their average instead of fitting one.
   std::vector<Eigen::Matrix3d> rotations;
+  // Optional surface faces of the body: indices into `positions`, unused slots -1
+  // (triangles: 3 nodes, quads: 4, split 0-1-2 / 0-2-3; planar meshes: edges, 2). When
+  // present, the rotation form's ψ takes the distance to the nearest face instead of
+  // the nearest node, so that ψ is smooth between the nodes (docs/idw.md).
+  std::vector<std::array<Index, 4>> faces;
 };
 
 // n·x = offset; a volume node on the plane keeps its n-coordinate.
