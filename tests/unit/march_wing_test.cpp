@@ -35,6 +35,13 @@ void print(const char* name, const BoundaryLayer& layer, const MarchMetrics& m) 
                 region.location.x(), region.location.y(), region.location.z());
 }
 
+march_surfaces::TestWing coarse_wing(int spanwise_cells) {
+  march_surfaces::TestWing wing;
+  wing.chordwise_cells = 48;
+  wing.spanwise_cells = spanwise_cells;
+  return wing;
+}
+
 void check_wing(const march_surfaces::TestWing& wing) {
   const SurfaceMesh surface = march_surfaces::wing(wing);
   const BoundaryLayer layer = march_layers(surface, wing_options());
@@ -102,14 +109,11 @@ TEST(MarchWing, ThickWing) {
 // and below the sheet like the rest of the base; as a free edge of the sheet they got
 // a line of their own and the layers' faces on the plane did not close round it.
 TEST(MarchWing, BluntBaseLayersCloseOnTheSymmetryPlane) {
-  march_surfaces::TestWing wing;
+  march_surfaces::TestWing wing = coarse_wing(8);
   wing.blunt_base = true;
-  wing.chordwise_cells = 48;
-  wing.spanwise_cells = 8;
-  const SurfaceMesh surface = march_surfaces::wing(wing);
   MarchOptions options = wing_options();
   options.spacing.layer_count = 4;
-  const BoundaryLayer layer = march_layers(surface, options);
+  const BoundaryLayer layer = march_layers(march_surfaces::wing(wing), options);
   EXPECT_EQ(march_surfaces::invalid_cell_count(layer.mesh), 0);
   const FaceConnectivity faces = match_faces(layer.mesh);
   EXPECT_TRUE(faces.conforming());
@@ -122,10 +126,8 @@ TEST(MarchWing, WakeEndLinesStayInTheEndPlaneAndTheTipEdgeStaysFree) {
   // from root to tip. Every line from the end stays in that plane to the last bit
   // (within 1e-15 m of it the far field filled the hull with slivers); the lines of
   // the wake's tip edge still turn out round the tip.
-  march_surfaces::TestWing wing;
+  march_surfaces::TestWing wing = coarse_wing(12);
   wing.tip_twist_degrees = 5.0;
-  wing.chordwise_cells = 48;
-  wing.spanwise_cells = 12;
   const SurfaceMesh surface = march_surfaces::wing(wing);
   MarchOptions options = wing_options();
   options.spacing.layer_count = 24;
