@@ -266,11 +266,14 @@ std::vector<Triangle> symmetry_plane(double plane_y, const std::vector<Index>& r
   mesher.refine_mesh();
 
   for (const auto& edge : footprint)
-    if (!triangulation.is_edge(handles[edge[0]], handles[edge[1]]))
-      throw Error(
-          "farfield: the hull footprint on the symmetry plane crosses itself or the far-field edge near (" +
-          std::to_string(points[static_cast<std::size_t>(edge[0])].x()) + ", " + std::to_string(plane_y) +
-          ", " + std::to_string(points[static_cast<std::size_t>(edge[0])].z()) + ")");
+    if (!triangulation.is_edge(handles[edge[0]], handles[edge[1]])) {
+      const Vector3 where(points[static_cast<std::size_t>(edge[0])].x(), plane_y,
+                          points[static_cast<std::size_t>(edge[0])].z());
+      throw HullIntersectionError(
+          "farfield: the hull footprint on the symmetry plane crosses itself or the far-field edge near " +
+              point_text(where),
+          where);
+    }
 
   std::vector<Triangle> triangles;
   for (auto face = triangulation.finite_faces_begin(); face != triangulation.finite_faces_end(); ++face) {

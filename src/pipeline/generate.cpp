@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <fstream>
+#include <limits>
 #include <optional>
 #include <set>
 #include <sstream>
@@ -225,7 +226,12 @@ GenerateResult generate_from_surface(const SurfaceMesh& surface, const GenerateO
       // again. Each retry reaches further and lower.
       ForcedStop stop;
       stop.centre = *crossing;
-      stop.radius = 3.0 * (attempt + 1) * std::max(layers.report.total_thickness, 1e-12);
+      // Reach: three layer thicknesses and the surface cells there (twice the distance
+      // to the nearest surface node; thin layers alone reached no face on a small wing),
+      // growing with each retry; depth: four layers more each time.
+      double nearest_node = std::numeric_limits<double>::infinity();
+      for (const Vector3& point : surface.points) nearest_node = std::min(nearest_node, (point - *crossing).norm());
+      stop.radius = (attempt + 1) * (3.0 * layers.report.total_thickness + 2.0 * nearest_node);
       stop.layer = std::max(1, march_options.spacing.layer_count - 4 * (attempt + 1));
       march_options.forced_stops.push_back(stop);
       log.warning("farfield: the hull intersects itself near " + point_text(*crossing) +
