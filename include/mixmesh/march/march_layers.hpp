@@ -79,7 +79,7 @@ struct MarchOptions {
   // line high. The interface splits that layer's cells about their centre, and the two
   // tetrahedra on an outer quad are as flat as the cell is against the quad's short
   // side: on a cell a twentieth as high as that side their largest dihedral angle is
-  // about 175 deg, at a quarter about 165 deg. 0: the outermost layer keeps the growth
+  // 176-177 deg, at a quarter 161-166 deg. 0: the outermost layer keeps the growth
   // law's step.
   double outer_layer_height = 0.25;
   // Safety: halve the step of the nodes of a failed cell this many times before the
