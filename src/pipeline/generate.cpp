@@ -134,6 +134,7 @@ GenerateResult generate_from_surface(const SurfaceMesh& surface, const GenerateO
   std::optional<FarFieldResult> farfield_result;
   const std::size_t first_stage = report.stages.size();
   for (int attempt = 0; !farfield_result; ++attempt) {
+    report.hull_retries = attempt;
     // A retry's stage timings replace those of the attempt before.
     report.stages.erase(report.stages.begin() + static_cast<std::ptrdiff_t>(first_stage), report.stages.end());
     layers = run_stage("march", report, [&] { return march_layers(surface, march_options, nullptr); });
@@ -324,6 +325,7 @@ void write_report(const std::filesystem::path& path, const GenerateReport& repor
          << "\nstopped_faces = " << report.march.stopped_faces
          << "\nblended_faces = " << report.march.blended_faces
          << "\nthickness_lost = " << (report.march.stopped.empty() ? 0.0 : report.march.stopped.front().thickness_lost)
+         << "\nhull_retries = " << report.hull_retries
          << "\nhull_metric_edges_within_range = " << report.farfield_summary.hull_lengths.within_range
          << "\nlargest_dihedral = " << report.slivers.largest_dihedral_after
          << "\ntetrahedra_above_target_dihedral = " << report.slivers.above_target_after

@@ -81,7 +81,8 @@ set_tests_properties(pipeline_check_mesh_onera_m6_pitched PROPERTIES LABELS "reg
 # A hull that intersects itself is mended by lowering the layers round the crossing.
 add_test(NAME pipeline_hull_crossing_lowers_the_layers
          COMMAND mixmesh-cli generate ${CMAKE_CURRENT_LIST_DIR}/pipeline/hull_crossing_wing.toml
-                 --output-dir ${pipeline_folder}/hull_crossing)
+                 --output-dir ${pipeline_folder}/hull_crossing
+                 --report ${pipeline_folder}/hull_crossing/report.toml)
 set_tests_properties(pipeline_hull_crossing_lowers_the_layers PROPERTIES LABELS regression
                      FIXTURES_SETUP hull_crossing_mesh
                      PASS_REGULAR_EXPRESSION "the hull intersects itself near [^\n]* \\(retry 1 of 3\\).*points [0-9]+  surface elements")
@@ -89,3 +90,7 @@ add_test(NAME pipeline_check_mesh_hull_crossing
          COMMAND ${MIXMESH_PYTHON} ${MIXMESH_CHECK_MESH} ${pipeline_folder}/hull_crossing/hull_crossing_wing.vtu -q)
 set_tests_properties(pipeline_check_mesh_hull_crossing PROPERTIES LABELS regression
                      FIXTURES_REQUIRED hull_crossing_mesh PASS_REGULAR_EXPRESSION "\nVALID")
+add_test(NAME pipeline_report_counts_hull_retries
+         COMMAND ${CMAKE_COMMAND} -E cat ${pipeline_folder}/hull_crossing/report.toml)
+set_tests_properties(pipeline_report_counts_hull_retries PROPERTIES LABELS regression
+                     FIXTURES_REQUIRED hull_crossing_mesh PASS_REGULAR_EXPRESSION "\nhull_retries = 1\n")

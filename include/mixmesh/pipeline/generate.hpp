@@ -81,6 +81,7 @@ struct GenerateReport {
   std::size_t pyramids = 0;
   double min_scaled_jacobian = 0.0;
   MarchReport march;
+  int hull_retries = 0;  // times the layers were lowered round a crossing of the hull
   FarFieldResult farfield_summary;  // counts and hull metric lengths (mesh emptied)
   SliverReport slivers;
   std::vector<StageTiming> stages;
