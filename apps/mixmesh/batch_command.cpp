@@ -197,32 +197,26 @@ void add_slurm_options(CLI::App& command, Arguments& arguments, SlurmFlags& flag
           ->option_text("OUTPUT");
   command.add_flag("--dry-run", arguments.dry_run, "With --slurm: write the files but do not submit")
       ->needs(slurm);
-  flags.partition = command.add_option("--partition", arguments.slurm.partition, "Slurm partition")
-                        ->check(value_check("partition"))
-                        ->needs(slurm);
-  flags.time = command
-                   .add_option("--time", arguments.slurm.time,
-                               "Time limit of one task: minutes, HH:MM:SS or D-HH:MM:SS")
-                   ->check(value_check("time"))
-                   ->needs(slurm);
+  // A --slurm setting whose text is checked as its [slurm] key would be.
+  auto slurm_setting = [&](const std::string& name, auto& target, const std::string& help,
+                           const std::string& key) {
+    return command.add_option(name, target, help)->check(value_check(key))->needs(slurm);
+  };
+  flags.partition = slurm_setting("--partition", arguments.slurm.partition, "Slurm partition", "partition");
+  flags.time = slurm_setting("--time", arguments.slurm.time,
+                             "Time limit of one task: minutes, HH:MM:SS or D-HH:MM:SS", "time");
   flags.memory =
-      command.add_option("--memory", arguments.slurm.memory, "Memory of one task, e.g. 4G (--mem)")
-          ->check(value_check("memory"))
-          ->needs(slurm);
-  flags.account = command.add_option("--account", arguments.slurm.account, "Slurm account to charge")
-                      ->check(value_check("account"))
-                      ->needs(slurm);
+      slurm_setting("--memory", arguments.slurm.memory, "Memory of one task, e.g. 4G (--mem)", "memory");
+  flags.account = slurm_setting("--account", arguments.slurm.account, "Slurm account to charge", "account");
   flags.concurrency =
       command
           .add_option("--concurrency", arguments.slurm.concurrency,
                       "Tasks running at once (--array=...%K); default: as many as Slurm allows")
           ->check(CLI::Range(1, 1000000))
           ->needs(slurm);
-  flags.directives = command
-                         .add_option("--sbatch", arguments.slurm.directives,
-                                     "One more #SBATCH option, repeatable; write --sbatch=--qos=short")
-                         ->check(value_check("directive"))
-                         ->needs(slurm);
+  flags.directives =
+      slurm_setting("--sbatch", arguments.slurm.directives,
+                    "One more #SBATCH option, repeatable; write --sbatch=--qos=short", "directive");
   flags.script_template =
       command
           .add_option("--template", arguments.script_template,
