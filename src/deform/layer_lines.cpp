@@ -11,6 +11,7 @@
 
 #include "deform/ara_smoothing.hpp"
 #include "deform/rotation.hpp"
+#include "mixmesh/mesh/face_connectivity.hpp"
 #include "mixmesh/mesh/topology.hpp"
 
 namespace mixmesh::deform::detail {
@@ -138,11 +139,7 @@ struct FaceKey {
   }
 };
 
-std::array<Index, 4> sorted_key(const Face& face) {
-  std::array<Index, 4> key = face.nodes;  // unused slots hold -1 and sort first
-  std::sort(key.begin(), key.end());
-  return key;
-}
+std::array<Index, 4> sorted_key(const Face& face) { return sorted_face_key(face.nodes.data(), face.count); }
 
 // A sheet face with the layer cell on one side (the other is across it).
 struct SheetFace {
