@@ -21,7 +21,9 @@ namespace {
 struct Face {
   std::array<Index, 4> nodes{-1, -1, -1, -1};
   int count = 0;
-  bool has(Index node) const { return std::find(nodes.begin(), nodes.begin() + count, node) != nodes.begin() + count; }
+  bool has(Index node) const {
+    return std::find(nodes.begin(), nodes.begin() + count, node) != nodes.begin() + count;
+  }
 };
 
 bool is_layer_cell(const DualMesh& dual, std::size_t cell, int face_size) {
@@ -46,7 +48,8 @@ Index other_cell(const DualMesh& dual, const Face& face, std::size_t cell) {
     const std::size_t candidate = static_cast<std::size_t>(dual.point_cells[slot]);
     if (candidate == cell) continue;
     bool all = true;
-    for (int local = 1; local < face.count && all; ++local) all = cell_has(dual, candidate, face.nodes[local]);
+    for (int local = 1; local < face.count && all; ++local)
+      all = cell_has(dual, candidate, face.nodes[local]);
     if (all) return static_cast<Index>(candidate);
   }
   return -1;
@@ -139,7 +142,9 @@ struct FaceKey {
   }
 };
 
-std::array<Index, 4> sorted_key(const Face& face) { return sorted_face_key(face.nodes.data(), face.count); }
+std::array<Index, 4> sorted_key(const Face& face) {
+  return sorted_face_key(face.nodes.data(), face.count);
+}
 
 // A sheet face with the layer cell on one side (the other is across it).
 struct SheetFace {
@@ -311,7 +316,8 @@ LayerLines find_layer_lines(const DualMesh& dual, const std::vector<MarkerRole>&
   for (std::size_t node = 0; node < point_count; ++node) {
     if (line[node] < 0) continue;
     Index& top = line_top[static_cast<std::size_t>(line[node])];
-    if (top < 0 || lines.height[node] > lines.height[static_cast<std::size_t>(top)]) top = static_cast<Index>(node);
+    if (top < 0 || lines.height[node] > lines.height[static_cast<std::size_t>(top)])
+      top = static_cast<Index>(node);
   }
   for (std::size_t node = 0; node < point_count; ++node) {
     if (line[node] < 0) continue;
@@ -368,7 +374,8 @@ void transport_layer_lines(const LayerLines& lines, const BoundaryMotion& bounda
       const Vector3 fitted_chord = turn[base] * (original[top] - original[base]);
       const Vector3 moved_chord = method[top] - method[base];
       if (fitted_chord.norm() > 0.0 && moved_chord.norm() > 0.0)
-        line_turn = Eigen::Quaterniond::FromTwoVectors(fitted_chord, moved_chord).toRotationMatrix() * turn[base];
+        line_turn =
+            Eigen::Quaterniond::FromTwoVectors(fitted_chord, moved_chord).toRotationMatrix() * turn[base];
     }
     auto rigid = [&](std::size_t point) -> Vector3 {
       return method[base] + line_turn * (original[point] - original[base]);
