@@ -7,37 +7,25 @@
 
 #include "mixmesh/batch/slurm.hpp"
 
+#include "error_message.hpp"
+#include "scratch_files.hpp"
+
 using namespace mixmesh;
 namespace fs = std::filesystem;
 
 namespace {
 
 fs::path scratch(const std::string& name) {
-  const fs::path folder = fs::temp_directory_path() / ("mixmesh-batch-slurm-test-" + name);
-  fs::remove_all(folder);
-  fs::create_directories(folder);
-  return folder;
+  return scratch_files::folder("batch-slurm-test", name);
 }
 
-void write(const fs::path& path, const std::string& text) {
-  fs::create_directories(path.parent_path());
-  std::ofstream(path) << text;
-}
+using scratch_files::write;
 
 std::string read(const fs::path& path) {
   std::ifstream stream(path);
   std::ostringstream text;
   text << stream.rdbuf();
   return text.str();
-}
-
-std::string error_of(const std::function<void()>& action) {
-  try {
-    action();
-  } catch (const Error& error) {
-    return error.what();
-  }
-  return "no error";
 }
 
 const std::vector<batch::BatchCase> three_cases = {
@@ -58,14 +46,15 @@ TEST(BatchSlurm, ManifestKeepsEveryCaseOnOneLineWithAnAbsoluteConfig) {
   EXPECT_EQ(cases[2].config, "/abs/other.toml");
   EXPECT_TRUE(cases[2].settings.empty());
 
-  EXPECT_NE(error_of([&] {
+  EXPECT_NE(error_message([&] {
               batch::write_manifest(folder / "tab.tsv", {{"a", "a.toml", {"wing.name=\"x\ty\""}}});
             }).find("tab"),
             std::string::npos);
   write(folder / "bad.tsv", "# comment\nfine\t/a.toml\nno-config-here\n");
-  EXPECT_NE(
-      error_of([&] { batch::read_manifest(folder / "bad.tsv"); }).find("bad.tsv:3: expected CASE<TAB>CONFIG"),
-      std::string::npos);
+  EXPECT_NE(error_message([&] {
+              batch::read_manifest(folder / "bad.tsv");
+            }).find("bad.tsv:3: expected CASE<TAB>CONFIG"),
+            std::string::npos);
 }
 
 TEST(BatchSlurm, ArrayIndexesAreRanges) {
@@ -106,18 +95,19 @@ TEST(BatchSlurm, SlurmTableIsReadWithPositions) {
   EXPECT_EQ(options.concurrency, 8);
   EXPECT_EQ(options.directives, std::vector<std::string>{"--qos=low"});
   EXPECT_EQ(options.script_template, "/cases/site.sh");
-  EXPECT_EQ(error_of([&] { read("[slurm]\n\ntime = \"1h\"\n"); }),
+  EXPECT_EQ(error_message([&] { read("[slurm]\n\ntime = \"1h\"\n"); }),
             "/cases/batch.toml:3:8: 'slurm.time' = \"1h\" must be minutes, MM:SS, HH:MM:SS, D-HH, D-HH:MM or "
             "D-HH:MM:SS");
-  EXPECT_NE(error_of([&] {
+  EXPECT_NE(error_message([&] {
               read("[slurm]\npartiton = \"x\"\n");
             }).find("batch.toml:2:1: unknown key 'slurm.partiton'"),
             std::string::npos);
-  EXPECT_NE(error_of([&] { read("[slurm]\nconcurrency = 0\n"); }).find("batch.toml:2:15:"),
+  EXPECT_NE(error_message([&] { read("[slurm]\nconcurrency = 0\n"); }).find("batch.toml:2:15:"),
             std::string::npos);
-  EXPECT_NE(
-      error_of([&] { read("[slurm]\ndirectives = [\"--array=1\"]\n"); }).find("--array is set by the batch"),
-      std::string::npos);
+  EXPECT_NE(error_message([&] {
+              read("[slurm]\ndirectives = [\"--array=1\"]\n");
+            }).find("--array is set by the batch"),
+            std::string::npos);
 }
 
 TEST(BatchSlurm, ArrayScriptHasTheSbatchLinesBeforeTheTask) {
@@ -143,7 +133,7 @@ TEST(BatchSlurm, ArrayScriptHasTheSbatchLinesBeforeTheTask) {
   // sbatch stops reading #SBATCH lines at the first command.
   EXPECT_GT(script.find(task), script.rfind("#SBATCH"));
 
-  EXPECT_NE(error_of([&] {
+  EXPECT_NE(error_message([&] {
               batch::array_script({"/bin/mixmesh", "/my wings", {0}}, {});
             }).find("spaces"),
             std::string::npos);
@@ -161,12 +151,12 @@ TEST(BatchSlurm, SiteTemplateReplacesTheBuiltInScript) {
 
   // The misspelling is named, not only the placeholder it leaves missing.
   write(options.script_template, "#!/bin/bash\n{{sbatch}}\n{{tsk}}\n");
-  EXPECT_NE(error_of([&] {
+  EXPECT_NE(error_message([&] {
               batch::array_script({"/bin/mixmesh", "/out", {4}}, options);
             }).find("site.sh:3: unknown placeholder {{tsk}}"),
             std::string::npos);
   write(options.script_template, "#!/bin/bash\n{{sbatch}}\n");
-  EXPECT_NE(error_of([&] {
+  EXPECT_NE(error_message([&] {
               batch::array_script({"/bin/mixmesh", "/out", {4}}, options);
             }).find("has no {{task}}"),
             std::string::npos);
@@ -212,8 +202,9 @@ TEST(BatchSlurm, TasksRunAsTheLocalBatchAndCollectGivesItsSummary) {
   const std::vector<std::string> command = {"/bin/sh", (folder / "case.sh").string()};
   EXPECT_EQ(batch::run_task(output / "manifest.tsv", 0, command, Log()).status, "ok");
   EXPECT_EQ(batch::run_task(output / "manifest.tsv", 1, command, Log()).exit_code, 3);
-  EXPECT_NE(error_of([&] { batch::run_task(output / "manifest.tsv", 3, command, Log()); }).find("no case 3"),
-            std::string::npos);
+  EXPECT_NE(
+      error_message([&] { batch::run_task(output / "manifest.tsv", 3, command, Log()); }).find("no case 3"),
+      std::string::npos);
   write(output / "slurm" / "2.out",
         "slurmstepd: error: *** JOB 7 ON vm CANCELLED AT 2026-01-01T00:00:00 DUE TO "
         "TIME LIMIT ***\n");

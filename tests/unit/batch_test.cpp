@@ -4,22 +4,18 @@
 
 #include "mixmesh/batch/batch.hpp"
 
+#include "scratch_files.hpp"
+
 using namespace mixmesh;
 namespace fs = std::filesystem;
 
 namespace {
 
-// A fresh folder under the test's temporary directory.
 fs::path scratch(const std::string& name) {
-  const fs::path folder = fs::temp_directory_path() / ("mixmesh-batch-test-" + name);
-  fs::remove_all(folder);
-  fs::create_directories(folder);
-  return folder;
+  return scratch_files::folder("batch-test", name);
 }
 
-void write(const fs::path& path, const std::string& text) {
-  std::ofstream(path) << text;
-}
+using scratch_files::write;
 
 }  // namespace
 

@@ -10,6 +10,7 @@
 #include <sstream>
 #include <tuple>
 
+#include "error_message.hpp"
 #include "mixmesh/core/error.hpp"
 #include "mixmesh/geometry/airfoil.hpp"
 #include "mixmesh/geometry/airfoil_curve.hpp"
@@ -28,15 +29,6 @@ std::filesystem::path write_file(const std::string& name, const std::string& tex
 double naca_half_thickness(double x, double t) {
   return 5.0 * t *
          (0.2969 * std::sqrt(x) - 0.1260 * x - 0.3516 * x * x + 0.2843 * x * x * x - 0.1036 * x * x * x * x);
-}
-
-std::string message_of(const std::function<void()>& action) {
-  try {
-    action();
-  } catch (const Error& error) {
-    return error.what();
-  }
-  return "";
 }
 
 // A symmetric section written in Selig order (upper TE -> LE -> lower TE), `count` per side.
@@ -162,12 +154,12 @@ TEST(AirfoilFile, OneraDFileIsReadAsASharpSymmetricSection) {
 
 TEST(AirfoilFile, BadFilesNameTheFileAndLine) {
   EXPECT_NE(
-      message_of([] { read_airfoil_file("/nonexistent/section.dat"); }).find("/nonexistent/section.dat"),
+      error_message([] { read_airfoil_file("/nonexistent/section.dat"); }).find("/nonexistent/section.dat"),
       std::string::npos);
   const auto garbage = write_file("garbage.dat", "NAME\n1.0 0.0\n0.5 zero\n");
-  EXPECT_NE(message_of([&] { read_airfoil_file(garbage); }).find("garbage.dat:3:"), std::string::npos);
+  EXPECT_NE(error_message([&] { read_airfoil_file(garbage); }).find("garbage.dat:3:"), std::string::npos);
   const auto few = write_file("few.dat", "NAME\n1 0\n0.5 0.05\n0 0\n0.5 -0.05\n1 0\n");
-  EXPECT_NE(message_of([&] { read_airfoil_file(few); }).find("too few points"), std::string::npos);
+  EXPECT_NE(error_message([&] { read_airfoil_file(few); }).find("too few points"), std::string::npos);
   // Upper and lower surfaces swap sides half way: the outline crosses itself.
   std::ostringstream crossing;
   crossing << "CROSSING\n";
@@ -176,11 +168,11 @@ TEST(AirfoilFile, BadFilesNameTheFileAndLine) {
   for (int k = 1; k <= 10; ++k)
     crossing << 0.1 * k << " " << -0.05 * std::sin(M_PI * 0.1 * k) * (k > 5 ? -1 : 1) << "\n";
   const auto crossed = write_file("crossing.dat", crossing.str());
-  const std::string message = message_of([&] { read_airfoil_file(crossed); });
+  const std::string message = error_message([&] { read_airfoil_file(crossed); });
   EXPECT_NE(message.find("cross"), std::string::npos) << message;
   EXPECT_NE(message.find("crossing.dat:"), std::string::npos) << message;
   const auto lednicer = write_file("short_lednicer.dat", "L\n10. 10.\n0 0\n1 0\n");
-  EXPECT_NE(message_of([&] { read_airfoil_file(lednicer); }).find("short_lednicer.dat:2:"),
+  EXPECT_NE(error_message([&] { read_airfoil_file(lednicer); }).find("short_lednicer.dat:2:"),
             std::string::npos);
 }
 

@@ -9,6 +9,7 @@
 #include <map>
 #include <sstream>
 
+#include "error_message.hpp"
 #include "mixmesh/core/error.hpp"
 #include "mixmesh/surface/imported_surface.hpp"
 
@@ -20,15 +21,6 @@ std::filesystem::path write_file(const std::string& name, const std::string& tex
   const auto path = std::filesystem::path(::testing::TempDir()) / name;
   std::ofstream(path) << text;
   return path;
-}
-
-std::string message_of(const std::function<void()>& action) {
-  try {
-    action();
-  } catch (const Error& error) {
-    return error.what();
-  }
-  return "";
 }
 
 // The six faces of the unit cube as 3 x 3 Plot3D blocks, i x j pointing outward.
@@ -129,32 +121,32 @@ TEST(ImportedSurface, NodesWithinTheToleranceMergeAndCollapsedFacesAreErrors) {
   EXPECT_EQ(surface.points.size(), 4u);
   EXPECT_EQ(surface.unstructured[0].triangles[3], 0);
   SurfaceMesh collapsing = surface;
-  EXPECT_NE(message_of([&] { merge_coincident_nodes(collapsing, 2.0); }).find("patch pair"),
+  EXPECT_NE(error_message([&] { merge_coincident_nodes(collapsing, 2.0); }).find("patch pair"),
             std::string::npos);
 }
 
 TEST(ImportedSurface, BadFilesNameTheFileAndLine) {
   const auto short_file = write_file("short.p3d", "1\n2 2 1\n0 1 0 1\n0 0 1 1\n0 0\n");
-  EXPECT_NE(message_of([&] {
+  EXPECT_NE(error_message([&] {
               import_surfaces({{short_file, "", PatchRole::wall, false}}, {});
             }).find("short.p3d:5:"),
             std::string::npos);
   const auto word = write_file("word.p3d", "1\n2 2 1\n0 1 0 one\n");
-  EXPECT_NE(message_of([&] {
+  EXPECT_NE(error_message([&] {
               import_surfaces({{word, "", PatchRole::wall, false}}, {});
             }).find("word.p3d:3:"),
             std::string::npos);
   const auto volume = write_file("volume.p3d", "1\n2 2 2\n");
-  EXPECT_NE(message_of([&] {
+  EXPECT_NE(error_message([&] {
               import_surfaces({{volume, "", PatchRole::wall, false}}, {});
             }).find("volume block"),
             std::string::npos);
-  EXPECT_NE(message_of([] {
+  EXPECT_NE(error_message([] {
               import_surfaces({{"/nonexistent/wing.stl", "", PatchRole::wall, false}}, {});
             }).find("/nonexistent/wing.stl"),
             std::string::npos);
   const auto unknown = write_file("wing.igs", "");
-  EXPECT_NE(message_of([&] {
+  EXPECT_NE(error_message([&] {
               import_surfaces({{unknown, "", PatchRole::wall, false}}, {});
             }).find("unknown surface format"),
             std::string::npos);
