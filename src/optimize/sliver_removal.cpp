@@ -82,6 +82,7 @@ class SliverRemoval {
       remove_an_edge(t);
       flip_a_face(t);
       split_an_edge(t);
+      collapse_a_point(t);
       if (best_) {
         apply(*best_, report);
       } else if (options_.smooth_points && smooth_a_point(t)) {
@@ -95,7 +96,7 @@ class SliverRemoval {
   }
 
  private:
-  enum class Operation { edge_removal, face_flip, edge_split };
+  enum class Operation { edge_removal, face_flip, edge_split, point_collapse };
 
   // A local change: tetrahedra that go, tetrahedra that replace them (node -1: the
   // new point of a split) and the quality of both sets.
@@ -130,9 +131,18 @@ class SliverRemoval {
       complex_.add(piece, change.regions[k]);
     }
     switch (change.operation) {
-      case Operation::edge_removal: ++report.edge_removals; break;
-      case Operation::face_flip: ++report.face_flips; break;
-      case Operation::edge_split: ++report.edge_splits; break;
+      case Operation::edge_removal:
+        ++report.edge_removals;
+        break;
+      case Operation::face_flip:
+        ++report.face_flips;
+        break;
+      case Operation::edge_split:
+        ++report.edge_splits;
+        break;
+      case Operation::point_collapse:
+        ++report.point_collapses;
+        break;
     }
   }
 
@@ -140,7 +150,8 @@ class SliverRemoval {
   // by the dynamic programme over its sub-polygons, each triangle giving one
   // tetrahedron with either end of the edge.
   void remove_an_edge(int t) {
-    static constexpr std::array<std::array<int, 2>, 6> edges{{{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}}};
+    static constexpr std::array<std::array<int, 2>, 6> edges{
+        {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}}};
     const Tetrahedron nodes = complex_.nodes(t);
     for (const auto& edge : edges) {
       Index a = nodes[static_cast<std::size_t>(edge[0])], b = nodes[static_cast<std::size_t>(edge[1])];
@@ -149,8 +160,8 @@ class SliverRemoval {
       // Old tetrahedra (a, b, v_i, v_i+1) all have the mesh's orientation; with the ring
       // in that order the new ones are (a, v_i, v_k, v_j) and (b, v_i, v_j, v_k).
       const Tetrahedron first{a, b, apexes_[0], apexes_[1]};
-      if (complex_.orientation() * tetrahedron_volume6(point(first[0]), point(first[1]), point(first[2]),
-                                                       point(first[3])) <
+      if (complex_.orientation() *
+              tetrahedron_volume6(point(first[0]), point(first[1]), point(first[2]), point(first[3])) <
           0.0)
         std::swap(a, b);
       Tally old;
@@ -215,8 +226,7 @@ class SliverRemoval {
         if (node != face[0] && node != face[1] && node != face[2]) e = node;
       // The face's ring round (d, e) in the order that gives the mesh's orientation.
       std::array<Index, 3> ring = face;
-      if (complex_.orientation() *
-              tetrahedron_volume6(point(d), point(e), point(ring[0]), point(ring[1])) <
+      if (complex_.orientation() * tetrahedron_volume6(point(d), point(e), point(ring[0]), point(ring[1])) <
           0.0)
         std::swap(ring[1], ring[2]);
       Change change;
@@ -248,7 +258,8 @@ class SliverRemoval {
       if (!complex_.ring(t, a, c, apexes_, ring_)) continue;
       // The point of segment a-c closest to the line of the opposite edge.
       const Vector3 u = point(c) - point(a);
-      const Vector3 v = point(nodes[static_cast<std::size_t>(edge[3])]) - point(nodes[static_cast<std::size_t>(edge[2])]);
+      const Vector3 v =
+          point(nodes[static_cast<std::size_t>(edge[3])]) - point(nodes[static_cast<std::size_t>(edge[2])]);
       const Vector3 w = point(a) - point(nodes[static_cast<std::size_t>(edge[2])]);
       const double uu = u.dot(u), uv = u.dot(v), vv = v.dot(v), uw = u.dot(w), vw = v.dot(w);
       const double denominator = uu * vv - uv * uv;
@@ -290,6 +301,65 @@ class SliverRemoval {
         consider(std::move(change));
       }
     }
+  }
+
+  // Point collapse: a free point of t (a far-field point, say a metric point TetGen
+  // kept just above a hull face) merges into one of its neighbours w. Every tetrahedron
+  // round the point that has w goes; in the others w takes the point's place. The star
+  // of the point is a closed ball, so with every new tetrahedron positive the cone from
+  // w fills it exactly; the points next to both must be those round the edge (the link
+  // condition), or the cone would pinch the mesh.
+  void collapse_a_point(int t) {
+    const Tetrahedron nodes = complex_.nodes(t);
+    for (Index v : nodes) {
+      if (!complex_.free_point(v)) continue;
+      const std::vector<int> star = complex_.around(v);
+      std::vector<Index> neighbours;
+      for (int cell : star)
+        for (Index node : complex_.nodes(cell))
+          if (node != v) neighbours.push_back(node);
+      std::sort(neighbours.begin(), neighbours.end());
+      neighbours.erase(std::unique(neighbours.begin(), neighbours.end()), neighbours.end());
+      Tally old;
+      for (int cell : star) old.add(quality(complex_, cell), target());
+      for (Index w : neighbours) {
+        Change change;
+        change.operation = Operation::point_collapse;
+        change.before = old;
+        change.removed = star;
+        for (int cell : star) {
+          Tetrahedron piece = complex_.nodes(cell);
+          if (std::find(piece.begin(), piece.end(), w) != piece.end()) continue;
+          std::replace(piece.begin(), piece.end(), v, w);
+          change.after.add(quality(complex_, piece), target());
+          if (change.after.worst == invalid) break;
+          change.added.push_back(piece);
+          change.regions.push_back(complex_.region(cell));
+        }
+        if (!change.after.better_than(change.before) || !link_condition(v, w, neighbours)) continue;
+        consider(std::move(change));
+      }
+    }
+  }
+
+  // The points next to both v and w are exactly the apexes round edge (v, w).
+  bool link_condition(Index v, Index w, const std::vector<Index>& around_v) {
+    int edge_cell = -1;
+    for (int cell : complex_.around(v)) {
+      const Tetrahedron& n = complex_.nodes(cell);
+      if (std::find(n.begin(), n.end(), w) != n.end()) edge_cell = cell;
+    }
+    if (edge_cell < 0 || !complex_.ring(edge_cell, v, w, apexes_, ring_)) return false;
+    std::vector<Index> around_w;
+    for (int cell : complex_.around(w))
+      for (Index node : complex_.nodes(cell))
+        if (node != w && node != v) around_w.push_back(node);
+    std::sort(around_w.begin(), around_w.end());
+    around_w.erase(std::unique(around_w.begin(), around_w.end()), around_w.end());
+    std::size_t common = 0;
+    for (Index node : around_v)
+      if (node != w && std::binary_search(around_w.begin(), around_w.end(), node)) ++common;
+    return common == apexes_.size();
   }
 
   // Moves a free point of t to the best of a few trial positions: towards the mean of
@@ -392,6 +462,8 @@ SliverReport remove_slivers(MixedMesh& mesh, const SliverOptions& options) {
   measure(removal.complex(), options.target_dihedral_degrees, report.largest_dihedral_after,
           report.above_target_after, report.tetrahedra_after);
   removal.complex().write_back();
+  // Collapsed points are left without cells.
+  if (report.point_collapses > 0) compact_points(mesh);
   return report;
 }
 

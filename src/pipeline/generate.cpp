@@ -93,8 +93,8 @@ std::string layer_hint(const MarchReport& march) {
   if (march.stopped.empty())
     return "; check that the wing's sections do not intersect and that the wake does not cross the wing";
   const StoppedRegion& first = march.stopped.front();
-  return "; the layers stopped early on " + std::to_string(march.stopped_faces) + " faces (the first at layer " +
-         std::to_string(first.layer) + " near " + point_text(first.location) +
+  return "; the layers stopped early on " + std::to_string(march.stopped_faces) +
+         " faces (the first at layer " + std::to_string(first.layer) + " near " + point_text(first.location) +
          "): fewer or thinner layers (march.layers, march.growth_rate) or a finer surface there keep the "
          "layers clear of each other";
 }
@@ -136,7 +136,8 @@ GenerateResult generate_from_surface(const SurfaceMesh& surface, const GenerateO
   for (int attempt = 0; !farfield_result; ++attempt) {
     report.hull_retries = attempt;
     // A retry's stage timings replace those of the attempt before.
-    report.stages.erase(report.stages.begin() + static_cast<std::ptrdiff_t>(first_stage), report.stages.end());
+    report.stages.erase(report.stages.begin() + static_cast<std::ptrdiff_t>(first_stage),
+                        report.stages.end());
     layers = run_stage("march", report, [&] { return march_layers(surface, march_options, nullptr); });
     report.march = layers.report;
     log.info("march: " + seconds_text(report.stages.back().seconds) + ", " +
@@ -148,12 +149,12 @@ GenerateResult generate_from_surface(const SurfaceMesh& surface, const GenerateO
              std::to_string(layers.report.total_thickness) + " m");
     if (layers.report.stopped_faces > 0) {
       const StoppedRegion& lowest = layers.report.stopped.front();  // sorted by layer
-      log.warning("march: growth stopped early on " + std::to_string(layers.report.stopped_faces) + " faces (" +
-                  std::to_string(layers.report.stopped_nodes) + " nodes, " +
-                  std::to_string(layers.report.blended_faces) + " of them to slope down to the others); the lowest " +
-                  std::to_string(lowest.faces) + " at layer " + std::to_string(lowest.layer) + " near " +
-                  point_text(lowest.location) + ", " + std::to_string(lowest.thickness_lost) +
-                  " m of the wall stack lost");
+      log.warning("march: growth stopped early on " + std::to_string(layers.report.stopped_faces) +
+                  " faces (" + std::to_string(layers.report.stopped_nodes) + " nodes, " +
+                  std::to_string(layers.report.blended_faces) +
+                  " of them to slope down to the others); the lowest " + std::to_string(lowest.faces) +
+                  " at layer " + std::to_string(lowest.layer) + " near " + point_text(lowest.location) +
+                  ", " + std::to_string(lowest.thickness_lost) + " m of the wall stack lost");
     }
 
     interface = run_stage("interface", report, [&] {
@@ -185,7 +186,8 @@ GenerateResult generate_from_surface(const SurfaceMesh& surface, const GenerateO
                                            added_nodes.end());
         farfield_input.metrics = node_metrics(layers.mesh, layer_nodes);
         const std::vector<Matrix3> added_metrics = node_metrics(interface.mesh, added_nodes);
-        farfield_input.metrics.insert(farfield_input.metrics.end(), added_metrics.begin(), added_metrics.end());
+        farfield_input.metrics.insert(farfield_input.metrics.end(), added_metrics.begin(),
+                                      added_metrics.end());
         return 0;
       });
       log.info("metric: " + seconds_text(report.stages.back().seconds) + ", " +
@@ -214,7 +216,8 @@ GenerateResult generate_from_surface(const SurfaceMesh& surface, const GenerateO
         // A hull the far field cannot fill comes from the layers: say where they stopped
         // and what to change, not only what TetGen found.
         const std::string message = error.what();
-        if (message.find("intersect") == std::string::npos && message.find("hull edge") == std::string::npos &&
+        if (message.find("intersect") == std::string::npos &&
+            message.find("hull edge") == std::string::npos &&
             message.find("hull is open") == std::string::npos)
           throw;
         throw Error(message + layer_hint(layers.report));
@@ -231,7 +234,8 @@ GenerateResult generate_from_surface(const SurfaceMesh& surface, const GenerateO
       // to the nearest surface node; thin layers alone reached no face on a small wing),
       // growing with each retry; depth: four layers more each time.
       double nearest_node = std::numeric_limits<double>::infinity();
-      for (const Vector3& point : surface.points) nearest_node = std::min(nearest_node, (point - *crossing).norm());
+      for (const Vector3& point : surface.points)
+        nearest_node = std::min(nearest_node, (point - *crossing).norm());
       stop.radius = (attempt + 1) * (3.0 * layers.report.total_thickness + 2.0 * nearest_node);
       stop.layer = std::max(1, march_options.spacing.layer_count - 4 * (attempt + 1));
       march_options.forced_stops.push_back(stop);
@@ -252,16 +256,18 @@ GenerateResult generate_from_surface(const SurfaceMesh& surface, const GenerateO
   });
   {
     // With passes = 0 the stage only measures the tetrahedra.
-    report.slivers = run_stage("slivers", report, [&] { return remove_slivers(result.mesh, options.slivers); });
+    report.slivers =
+        run_stage("slivers", report, [&] { return remove_slivers(result.mesh, options.slivers); });
     const SliverReport& slivers = report.slivers;
-    log.info("slivers: " + seconds_text(report.stages.back().seconds) + ", " +
-             std::to_string(slivers.above_target_before) + " -> " + std::to_string(slivers.above_target_after) +
-             " tetrahedra above " + fixed_text(options.slivers.target_dihedral_degrees) +
-             " deg (largest dihedral " + fixed_text(slivers.largest_dihedral_before) + " -> " +
-             fixed_text(slivers.largest_dihedral_after) + " deg), " + std::to_string(slivers.edge_removals) +
-             " edge removals, " + std::to_string(slivers.face_flips) + " face flips, " +
-             std::to_string(slivers.edge_splits) + " edge splits, " +
-             std::to_string(slivers.smoothed_points) + " points moved");
+    log.info(
+        "slivers: " + seconds_text(report.stages.back().seconds) + ", " +
+        std::to_string(slivers.above_target_before) + " -> " + std::to_string(slivers.above_target_after) +
+        " tetrahedra above " + fixed_text(options.slivers.target_dihedral_degrees) +
+        " deg (largest dihedral " + fixed_text(slivers.largest_dihedral_before) + " -> " +
+        fixed_text(slivers.largest_dihedral_after) + " deg), " + std::to_string(slivers.edge_removals) +
+        " edge removals, " + std::to_string(slivers.face_flips) + " face flips, " +
+        std::to_string(slivers.edge_splits) + " edge splits, " + std::to_string(slivers.point_collapses) +
+        " point collapses, " + std::to_string(slivers.smoothed_points) + " points moved");
   }
   result.validity = run_stage("validate", report, [&] { return validate(result.mesh); });
   log.info("validate: " + seconds_text(report.stages.back().seconds) + ", " + result.validity.summary());
@@ -323,8 +329,8 @@ void write_report(const std::filesystem::path& path, const GenerateReport& repor
          << "\nmin_scaled_jacobian = " << report.min_scaled_jacobian
          << "\nlayers_completed = " << report.march.layers_completed
          << "\nstopped_faces = " << report.march.stopped_faces
-         << "\nblended_faces = " << report.march.blended_faces
-         << "\nthickness_lost = " << (report.march.stopped.empty() ? 0.0 : report.march.stopped.front().thickness_lost)
+         << "\nblended_faces = " << report.march.blended_faces << "\nthickness_lost = "
+         << (report.march.stopped.empty() ? 0.0 : report.march.stopped.front().thickness_lost)
          << "\nhull_retries = " << report.hull_retries
          << "\nhull_metric_edges_within_range = " << report.farfield_summary.hull_lengths.within_range
          << "\nlargest_dihedral = " << report.slivers.largest_dihedral_after

@@ -21,9 +21,9 @@ MixedMesh cube_block(int n) {
   for (int k = 0; k < n; ++k)
     for (int j = 0; j < n; ++j)
       for (int i = 0; i < n; ++i) {
-        const Index c[8] = {id(i, j, k),         id(i + 1, j, k),         id(i + 1, j + 1, k),
-                            id(i, j + 1, k),     id(i, j, k + 1),         id(i + 1, j, k + 1),
-                            id(i + 1, j + 1, k + 1), id(i, j + 1, k + 1)};
+        const Index c[8] = {
+            id(i, j, k),     id(i + 1, j, k),     id(i + 1, j + 1, k),     id(i, j + 1, k),
+            id(i, j, k + 1), id(i + 1, j, k + 1), id(i + 1, j + 1, k + 1), id(i, j + 1, k + 1)};
         // Kuhn's six tetrahedra round the diagonal 0-6.
         const int paths[6][2] = {{1, 2}, {2, 3}, {3, 7}, {7, 4}, {4, 5}, {5, 1}};
         for (const auto& path : paths) {
@@ -101,9 +101,10 @@ TEST(SliverRemoval, PerturbedBlockLosesItsSliversAndKeepsItsBoundaryAndVolume) {
 
   const SliverReport report = remove_slivers(mesh, SliverOptions{});
   const double after = largest_dihedral(mesh, above_after);
-  std::printf("largest dihedral %.2f -> %.2f deg, above 160: %zu -> %zu, %zu edge removals, %zu flips, %zu moves\n",
-              before, after, above_before, above_after, report.edge_removals, report.face_flips,
-              report.smoothed_points);
+  std::printf(
+      "largest dihedral %.2f -> %.2f deg, above 160: %zu -> %zu, %zu edge removals, %zu flips, %zu moves\n",
+      before, after, above_before, above_after, report.edge_removals, report.face_flips,
+      report.smoothed_points);
   EXPECT_EQ(report.above_target_before, above_before);
   EXPECT_EQ(report.above_target_after, above_after);
   EXPECT_LT(after, before);
@@ -124,6 +125,33 @@ TEST(SliverRemoval, PerturbedBlockLosesItsSliversAndKeepsItsBoundaryAndVolume) {
       EXPECT_EQ(x, Vector3(x.array().round().matrix()));
     }
   }
+}
+
+TEST(SliverRemoval, AFreePointJustAboveAFaceIsCollapsedAndDropped) {
+  // One tetrahedron coned from an inner point a hair above its base: the cone on the
+  // base is flat, and no flip of the four mends it (the point lies inside), but merging
+  // the point into a corner gives back the one tetrahedron.
+  MixedMesh mesh;
+  mesh.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {0.3, 0.3, 1e-3}};
+  const Index cone[4][4] = {{0, 2, 1, 4}, {0, 1, 3, 4}, {1, 2, 3, 4}, {0, 3, 2, 4}};
+  for (const auto& t : cone) mesh.add_cell(CellType::tetrahedron, t);
+  const int wall = mesh.marker("wall");
+  for (const CellFace& face : match_faces(mesh).boundary) {
+    Index nodes[4];
+    face_nodes(mesh, face, nodes);
+    mesh.add_face(FaceType::triangle, nodes, wall);
+  }
+  std::size_t above = 0;
+  ASSERT_GT(largest_dihedral(mesh, above), 179.0);
+  SliverOptions options;
+  options.smooth_points = false;
+  const SliverReport report = remove_slivers(mesh, options);
+  EXPECT_EQ(report.point_collapses, 1u);
+  EXPECT_EQ(mesh.cell_count(CellType::tetrahedron), 1u);
+  EXPECT_EQ(mesh.points.size(), 4u);
+  EXPECT_NEAR(std::abs(total_volume(mesh)), 1.0 / 6.0, 1e-12);  // the cones are negatively oriented
+  EXPECT_TRUE(match_faces(mesh).conforming());
+  EXPECT_EQ(mesh.face_count(), 4u);
 }
 
 TEST(SliverRemoval, BadOptionsAreRejected) {

@@ -16,6 +16,9 @@
 //   - edge split: a new point where an interior edge of the sliver passes the opposite
 //     edge, or lifted from there towards the ring's apexes, cuts every tetrahedron
 //     round the edge in two;
+//   - point collapse: a point used by tetrahedra only and on no boundary face merges
+//     into a neighbour (the tetrahedra round their edge go, the others take the
+//     neighbour in its place);
 //   - point smoothing: a point used by tetrahedra only and on no boundary face moves to
 //     the best of a few trial positions.
 // Faces shared with a pyramid, prism or hexahedron and boundary faces are never
@@ -42,7 +45,8 @@ struct SliverReport {
   double largest_dihedral_before = 0.0, largest_dihedral_after = 0.0;  // degrees
   std::size_t above_target_before = 0, above_target_after = 0;
   // Operations done; every edge split appends one point to the mesh.
-  std::size_t edge_removals = 0, face_flips = 0, edge_splits = 0, smoothed_points = 0;
+  // Every point collapse removes one point (the mesh's points are renumbered).
+  std::size_t edge_removals = 0, face_flips = 0, edge_splits = 0, point_collapses = 0, smoothed_points = 0;
   int passes = 0;
 };
 
