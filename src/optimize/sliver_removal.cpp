@@ -83,29 +83,27 @@ class SliverRemoval {
       flip_a_face(t);
       split_an_edge(t);
       collapse_a_point(t);
-      if (best_) {
-        apply(*best_, report);
-      } else if (options_.smooth_points && smooth_a_point(t)) {
-        ++report.smoothed_points;
-      } else {
-        continue;
-      }
+      if (options_.smooth_points) move_a_point(t);
+      if (!best_) continue;
+      apply(*best_, report);
       ++done;
     }
     return done;
   }
 
  private:
-  enum class Operation { edge_removal, face_flip, edge_split, point_collapse };
+  enum class Operation { edge_removal, face_flip, edge_split, point_collapse, point_move };
 
   // A local change: tetrahedra that go, tetrahedra that replace them (node -1: the
-  // new point of a split) and the quality of both sets.
+  // new point of a split), or a point that moves, and the quality of both sets.
   struct Change {
     Operation operation = Operation::edge_removal;
     std::vector<int> removed;
     std::vector<Tetrahedron> added;
     std::vector<int> regions;
     std::optional<Vector3> new_point;
+    Index moved_point = -1;
+    Vector3 moved_to = Vector3::Zero();
     Tally before, after;
 
     // Ranked by the worst tetrahedron it leaves, then by how much it lowers the shortfall.
@@ -122,6 +120,8 @@ class SliverRemoval {
   }
 
   void apply(const Change& change, SliverReport& report) {
+    if (change.moved_point >= 0)
+      complex_.points()[static_cast<std::size_t>(change.moved_point)] = change.moved_to;
     const Index added = change.new_point ? complex_.add_point(*change.new_point) : -1;
     for (int cell : change.removed) complex_.remove(cell);
     for (std::size_t k = 0; k < change.added.size(); ++k) {
@@ -142,6 +142,9 @@ class SliverRemoval {
         break;
       case Operation::point_collapse:
         ++report.point_collapses;
+        break;
+      case Operation::point_move:
+        ++report.smoothed_points;
         break;
     }
   }
@@ -362,23 +365,24 @@ class SliverRemoval {
     return common == apexes_.size();
   }
 
-  // Moves a free point of t to the best of a few trial positions: towards the mean of
-  // its neighbours, and along the normal of the opposite face (a sliver's fourth point
-  // lies almost in the plane of the other three).
-  bool smooth_a_point(int t) {
+  // Point move: a free point of t to the best of a few trial positions, towards the
+  // mean of its neighbours and along the normal of the opposite face (a sliver's fourth
+  // point lies almost in the plane of the other three). A point on a flat boundary (the
+  // symmetry plane) moves within its plane, so its boundary triangles stay in it.
+  void move_a_point(int t) {
     const Tetrahedron nodes = complex_.nodes(t);
     for (int k = 0; k < 4; ++k) {
       const Index p = nodes[static_cast<std::size_t>(k)];
-      if (!complex_.free_point(p)) continue;
-      const std::vector<int> cells = complex_.around(p);
-      auto worst = [&]() {
-        double value = std::numeric_limits<double>::infinity();
-        for (int cell : cells) value = std::min(value, quality(complex_, cell));
-        return value;
-      };
+      const Vector3& plane = complex_.plane_normal(p);
+      if (!complex_.free_point(p) && plane.isZero()) continue;
+      const std::vector<int>& cells = complex_.around(p);
       Vector3& x = complex_.points()[static_cast<std::size_t>(p)];
       const Vector3 start = x;
-      const double old_worst = worst();
+      auto tally = [&]() {
+        Tally result;
+        for (int cell : cells) result.add(quality(complex_, cell), target());
+        return result;
+      };
       Vector3 mean = Vector3::Zero();
       double length = 0.0;
       int count = 0;
@@ -395,25 +399,30 @@ class SliverRemoval {
       const Vector3& v = point(nodes[static_cast<std::size_t>((k + 2) % 4)]);
       const Vector3& w = point(nodes[static_cast<std::size_t>((k + 3) % 4)]);
       Vector3 normal = (v - u).cross(w - u);
-      normal = normal.norm() > 0.0 ? Vector3(normal.normalized()) : Vector3::Zero();
+      normal -= plane.dot(normal) * plane;
+      normal = normal.norm() > 1e-12 * (v - u).squaredNorm() ? Vector3(normal.normalized()) : Vector3::Zero();
       if (normal.dot(start - u) < 0.0) normal = -normal;
+      const Vector3 towards_mean = mean - start - plane.dot(mean - start) * plane;
       std::vector<Vector3> trials;
-      for (double f : {1.0, 0.5, 0.25}) trials.push_back(start + f * (mean - start));
-      for (double f : {0.05, 0.1, 0.2, 0.4}) trials.push_back(start + f * length * normal);
-      Vector3 best = start;
-      double best_worst = old_worst;
+      for (double f : {1.0, 0.5, 0.25}) trials.push_back(start + f * towards_mean);
+      if (!normal.isZero())
+        for (double f : {0.05, 0.1, 0.2, 0.4}) trials.push_back(start + f * length * normal);
+      Change change;
+      change.operation = Operation::point_move;
+      change.before = tally();
+      change.moved_point = p;
       for (const Vector3& trial : trials) {
         x = trial;
-        const double value = worst();
-        if (value > best_worst + 1e-6) {
-          best_worst = value;
-          best = trial;
+        const Tally here = tally();
+        if (here.better_than(change.after.worst == std::numeric_limits<double>::infinity() ? change.before
+                                                                                           : change.after)) {
+          change.after = here;
+          change.moved_to = trial;
         }
       }
-      x = best;
-      if (best != start) return true;
+      x = start;
+      if (change.after.worst != std::numeric_limits<double>::infinity()) consider(std::move(change));
     }
-    return false;
   }
 
   const Vector3& point(Index p) { return complex_.points()[static_cast<std::size_t>(p)]; }

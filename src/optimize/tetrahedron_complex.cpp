@@ -34,16 +34,16 @@ TetrahedronComplex::TetrahedronComplex(MixedMesh& mesh) : mesh_(mesh) {
     for (Index node : mesh.block(type).nodes) free_[static_cast<std::size_t>(node)] = 0;
   for (FaceType type : all_face_types)
     for (Index node : mesh.faces(type).nodes) free_[static_cast<std::size_t>(node)] = 0;
+  find_planar_points();
   faces_.reserve(2 * count + 16);
   bool oriented = false;
   for (std::size_t t = 0; t < count; ++t) {
     const Index* n = block.nodes.data() + 4 * t;
     const Tetrahedron nodes{n[0], n[1], n[2], n[3]};
     if (!oriented) {
-      const double volume = tetrahedron_volume6(mesh.points[static_cast<std::size_t>(n[0])],
-                                                mesh.points[static_cast<std::size_t>(n[1])],
-                                                mesh.points[static_cast<std::size_t>(n[2])],
-                                                mesh.points[static_cast<std::size_t>(n[3])]);
+      const double volume = tetrahedron_volume6(
+          mesh.points[static_cast<std::size_t>(n[0])], mesh.points[static_cast<std::size_t>(n[1])],
+          mesh.points[static_cast<std::size_t>(n[2])], mesh.points[static_cast<std::size_t>(n[3])]);
       if (volume != 0.0) {
         orientation_ = volume > 0.0 ? 1.0 : -1.0;
         oriented = true;
@@ -53,10 +53,44 @@ TetrahedronComplex::TetrahedronComplex(MixedMesh& mesh) : mesh_(mesh) {
   }
 }
 
+void TetrahedronComplex::find_planar_points() {
+  // 1: a candidate so far; 0: not planar (another cell type, a quad, or faces in two planes).
+  std::vector<char> planar(mesh_.points.size(), 1);
+  plane_normal_.assign(mesh_.points.size(), Vector3::Zero());
+  for (CellType type : {CellType::pyramid, CellType::prism, CellType::hexahedron})
+    for (Index node : mesh_.block(type).nodes) planar[static_cast<std::size_t>(node)] = 0;
+  for (Index node : mesh_.faces(FaceType::quad).nodes) planar[static_cast<std::size_t>(node)] = 0;
+  const FaceBlock& triangles = mesh_.faces(FaceType::triangle);
+  for (std::size_t face = 0; face < triangles.nodes.size() / 3; ++face) {
+    const Index* n = triangles.nodes.data() + 3 * face;
+    const Vector3& a = mesh_.points[static_cast<std::size_t>(n[0])];
+    const Vector3 area = (mesh_.points[static_cast<std::size_t>(n[1])] - a)
+                             .cross(mesh_.points[static_cast<std::size_t>(n[2])] - a);
+    const double norm = area.norm();
+    for (int k = 0; k < 3; ++k) {
+      const auto node = static_cast<std::size_t>(n[k]);
+      if (!planar[node]) continue;
+      if (!(norm > 0.0)) {
+        planar[node] = 0;
+        continue;
+      }
+      const Vector3 normal = area / norm;
+      Vector3& known = plane_normal_[node];
+      if (known.isZero())
+        known = normal;
+      else if (known.cross(normal).norm() > 1e-9)
+        planar[node] = 0;
+    }
+  }
+  for (std::size_t point = 0; point < planar.size(); ++point)
+    if (!planar[point] || free_[point]) plane_normal_[point] = Vector3::Zero();
+}
+
 Index TetrahedronComplex::add_point(const Vector3& point) {
   mesh_.points.push_back(point);
   around_.emplace_back();
   free_.push_back(1);
+  plane_normal_.push_back(Vector3::Zero());
   return static_cast<Index>(mesh_.points.size() - 1);
 }
 
@@ -84,8 +118,9 @@ void TetrahedronComplex::remove(int t) {
     list.erase(std::find(list.begin(), list.end(), t));
   }
   for (const auto& face : opposite) {
-    auto slot = faces_.find(key(nodes[static_cast<std::size_t>(face[0])], nodes[static_cast<std::size_t>(face[1])],
-                                nodes[static_cast<std::size_t>(face[2])]));
+    auto slot =
+        faces_.find(key(nodes[static_cast<std::size_t>(face[0])], nodes[static_cast<std::size_t>(face[1])],
+                        nodes[static_cast<std::size_t>(face[2])]));
     if (slot->second[0] == t) slot->second[0] = slot->second[1];
     slot->second[1] = -1;
     if (slot->second[0] < 0) faces_.erase(slot);

@@ -32,6 +32,10 @@ class TetrahedronComplex {
   const std::vector<int>& around(Index p) const { return around_[static_cast<std::size_t>(p)]; }
   // True for a point no other cell type and no boundary face uses.
   bool free_point(Index p) const { return free_[static_cast<std::size_t>(p)] != 0; }
+  // For a point no other cell type uses whose boundary faces are triangles in one plane
+  // (a symmetry plane, a flat side of the far field): that plane's unit normal, along
+  // which the point must not move; zero for every other point.
+  const Vector3& plane_normal(Index p) const { return plane_normal_[static_cast<std::size_t>(p)]; }
 
   // The tetrahedron across face (a, b, c) from t, or -1.
   int neighbour(int t, Index a, Index b, Index c) const;
@@ -56,6 +60,7 @@ class TetrahedronComplex {
     std::size_t operator()(const FaceKey& key) const;
   };
   static FaceKey key(Index a, Index b, Index c);
+  void find_planar_points();
 
   MixedMesh& mesh_;
   std::vector<Tetrahedron> tetrahedra_;
@@ -63,6 +68,7 @@ class TetrahedronComplex {
   std::vector<char> alive_;
   std::vector<std::vector<int>> around_;
   std::vector<char> free_;
+  std::vector<Vector3> plane_normal_;
   std::unordered_map<FaceKey, std::array<int, 2>, FaceHash> faces_;
   double orientation_ = 1.0;
 };

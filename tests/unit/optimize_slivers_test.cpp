@@ -154,6 +154,35 @@ TEST(SliverRemoval, AFreePointJustAboveAFaceIsCollapsedAndDropped) {
   EXPECT_EQ(mesh.face_count(), 4u);
 }
 
+TEST(SliverRemoval, APointOnAFlatBoundaryMovesWithinItsPlane) {
+  // A point of the block's bottom face pushed along the face until its boundary
+  // triangles are needles: only moving it mends them, and it must stay in the plane.
+  MixedMesh mesh = cube_block(3);
+  const auto moved = static_cast<std::size_t>(1 * 4 + 1);  // (1, 1, 0)
+  ASSERT_EQ(mesh.points[moved], Vector3(1, 1, 0));
+  std::size_t above = 0;
+  for (double step = 0.0; step < 1.0; step += 0.01) {
+    mesh.points[moved] = Vector3(1 + step, 1 + step, 0);
+    bool valid = true;
+    for (std::size_t t = 0; t < mesh.cell_count(CellType::tetrahedron) && valid; ++t)
+      valid = signed_volume(CellType::tetrahedron, mesh.points, mesh.cell(CellType::tetrahedron, t)) > 0.0;
+    if (!valid) {
+      mesh.points[moved] = Vector3(1 + step - 0.01, 1 + step - 0.01, 0);
+      break;
+    }
+  }
+  const double before = largest_dihedral(mesh, above);
+  ASSERT_GT(before, 170.0);
+  const Vector3 pushed = mesh.points[moved];
+  remove_slivers(mesh, SliverOptions{});
+  EXPECT_LT((mesh.points[moved] - Vector3(1, 1, 0)).norm(), (pushed - Vector3(1, 1, 0)).norm());
+  const double after = largest_dihedral(mesh, above);
+  std::printf("largest dihedral %.2f -> %.2f deg\n", before, after);
+  EXPECT_LT(after, 160.0);
+  EXPECT_EQ(mesh.points[moved].z(), 0.0);
+  EXPECT_TRUE(match_faces(mesh).conforming());
+}
+
 TEST(SliverRemoval, BadOptionsAreRejected) {
   MixedMesh mesh = cube_block(1);
   SliverOptions options;

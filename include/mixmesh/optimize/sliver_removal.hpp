@@ -19,10 +19,11 @@
 //   - point collapse: a point used by tetrahedra only and on no boundary face merges
 //     into a neighbour (the tetrahedra round their edge go, the others take the
 //     neighbour in its place);
-//   - point smoothing: a point used by tetrahedra only and on no boundary face moves to
-//     the best of a few trial positions.
+//   - point smoothing: a point used by tetrahedra only moves to the best of a few trial
+//     positions; on a flat boundary (all its boundary faces triangles in one plane) it
+//     moves within that plane.
 // Faces shared with a pyramid, prism or hexahedron and boundary faces are never
-// removed, and no point of them moves, so the mesh stays conforming with every face
+// removed, no point of them moves off its plane, so the mesh stays conforming with every face
 // and marker it had.
 #pragma once
 
