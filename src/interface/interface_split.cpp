@@ -10,6 +10,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "cap_clearance.hpp"
 #include "mixmesh/core/error.hpp"
 #include "mixmesh/mesh/cell_geometry.hpp"
 #include "mixmesh/mesh/face_connectivity.hpp"
@@ -233,7 +234,8 @@ constexpr double minimum_cap_reach = 0.4;
 // quad's centre at cap_height × its shortest edge (for a marked cell at least
 // minimum_cap_reach × its longest); the caps' sides join the hull.
 void cap_cell(CellType type, std::size_t cell, const Index* nodes, unsigned outer_faces, int region,
-              const InterfaceOptions& options, double cap_height, bool split_tried, InterfaceResult& result) {
+              const InterfaceOptions& options, double cap_height, bool split_tried, InterfaceResult& result,
+              std::vector<interface_detail::TallCap>* tall_caps = nullptr) {
   MixedMesh& out = result.mesh;
   const CellDescriptor& shape = descriptor(type);
   for (int face = 0; face < shape.face_count; ++face) {
@@ -258,13 +260,17 @@ void cap_cell(CellType type, std::size_t cell, const Index* nodes, unsigned oute
     // The far field fills the valley between the caps of two neighbouring quads with a
     // tetrahedron of their shared edge and the two apexes; its dihedral angle at the
     // apexes' edge is 180 degrees less twice atan(2 h / L) for apex height h over an edge
-    // of length L. On long, narrow quads (a wake's) a height from the shortest edge
-    // alone made those valley tetrahedra slivers, so the height of a marked cell's cap is
-    // at least a part of the longest edge (minimum_cap_reach 0.4: 0.2 L for a cap height
-    // 0.5, 136 deg). The caps of cells that could not be split (twisted cells at a tip's
-    // trailing edge, in a concave corner of the hull) keep their low height: taller,
-    // they crossed the hull there.
-    const double reach =
+    // of length L, and every tetrahedron on a cap face over that edge has an angle near
+    // the face's apex angle, 180 degrees less twice atan(2 d / L) for an apex d from the
+    // edge. On long, narrow quads (a wake's, 30:1 behind a trailing edge) a height from
+    // the shortest edge alone made both slivers, so a marked cell's cap stands at least
+    // a part of the longest edge high (minimum_cap_reach 0.4: 0.2 L for a cap height
+    // 0.5, 136 deg). Where that crosses the hull (the concave corner behind a tip's
+    // trailing edge) lower_crossing_caps brings it down, not below twice the shortest
+    // edge. The caps of cells that could not be split (twisted cells at a tip's trailing
+    // edge, in a concave corner of the hull) keep their low height.
+    const double reach = split_tried ? shortest : std::max(shortest, minimum_cap_reach * longest);
+    const double lowest_reach =
         split_tried ? shortest : std::max(shortest, std::min(minimum_cap_reach * longest, 2.0 * shortest));
     const Vector3 normal = face_area_vector(out.points, corners, 4).normalized();
     const Index apex = static_cast<Index>(out.points.size());
@@ -281,8 +287,8 @@ void cap_cell(CellType type, std::size_t cell, const Index* nodes, unsigned oute
             .norm());
     // (A quad with an edge of zero length gets no cap: its height would stay zero.)
     for (double height = cap_height * reach; height > 0.0 &&
-                                                !cell_shape(CellType::pyramid, out.points, pyramid).valid() &&
-                                                2.0 * height <= options.cap_height_limit * diagonal;) {
+                                             !cell_shape(CellType::pyramid, out.points, pyramid).valid() &&
+                                             2.0 * height <= options.cap_height_limit * diagonal;) {
       height *= 2.0;
       out.points.back() = middle + height * normal;
     }
@@ -292,6 +298,15 @@ void cap_cell(CellType type, std::size_t cell, const Index* nodes, unsigned oute
                   " on face " + std::to_string(face) + " near " + point_text(middle));
     out.add_cell(CellType::pyramid, pyramid, region);
     ++result.pyramids;
+    const double height = (out.points.back() - middle).norm();
+    if (tall_caps && cap_height * lowest_reach < height)
+      tall_caps->push_back({apex,
+                            middle,
+                            normal,
+                            height,
+                            cap_height * lowest_reach,
+                            {corners[0], corners[1], corners[2], corners[3], apex},
+                            result.hull.size()});
     for (int corner = 0; corner < 4; ++corner)
       result.hull.push_back({corners[corner], corners[(corner + 1) % 4], apex});
   }
@@ -338,6 +353,7 @@ InterfaceResult split_interface(const MixedMesh& mesh, const OuterLayer& layer,
         plain_hull_node[static_cast<std::size_t>(corners[corner])] = 1;
     }
 
+  std::vector<interface_detail::TallCap> tall_caps;
   // Outer faces per cell as bit masks; cells in order of their first listing.
   std::set<FaceKey> hull_faces;  // to drop the old tags of the outer faces
   for (const auto& [type, cells] :
@@ -377,7 +393,7 @@ InterfaceResult split_interface(const MixedMesh& mesh, const OuterLayer& layer,
     for (std::size_t cell : order)
       if (capped[cell])
         cap_cell(type, cell, mesh.cell(type, cell), outer_faces[cell], block.regions[cell], options,
-                 options.marked_cap_height, false, result);
+                 options.marked_cap_height, false, result, &tall_caps);
     // The split points, found side by side: each search evaluates hundreds of piece
     // shapes on the thin cells of free edges, and depends on its own cell alone.
     std::vector<SplitChoice> choices(order.size());
@@ -424,6 +440,7 @@ InterfaceResult split_interface(const MixedMesh& mesh, const OuterLayer& layer,
       out.add_face(type, nodes, mesh.faces(type).markers[face]);
     }
   }
+  result.lowered_caps = interface_detail::lower_crossing_caps(out, result.hull, tall_caps);
   const int hull_marker = out.marker(options.hull_marker);
   for (const auto& triangle : result.hull) out.add_face(FaceType::triangle, triangle.data(), hull_marker);
   return result;

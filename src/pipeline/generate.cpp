@@ -168,7 +168,8 @@ GenerateResult generate_from_surface(const SurfaceMesh& surface, const GenerateO
     });
     log.info("interface: " + seconds_text(report.stages.back().seconds) + ", " +
              std::to_string(interface.pyramids) + " pyramids, " + std::to_string(interface.tetrahedra) +
-             " tetrahedra, hull of " + std::to_string(interface.hull.size()) + " triangles");
+             " tetrahedra, hull of " + std::to_string(interface.hull.size()) + " triangles, " +
+             std::to_string(interface.lowered_caps) + " caps lowered clear of the hull");
 
     farfield_input = FarFieldInput();
     if (options.farfield.sizing == FarFieldSizing::anisotropic) {

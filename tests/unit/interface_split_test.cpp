@@ -383,3 +383,49 @@ TEST(InterfaceSplit, CellsOfMarkedOuterQuadsAreCappedNotSplit) {
   flat.marked_cap_height = 0.0;
   EXPECT_THROW(split_interface(input, layer, flat), Error);
 }
+
+// Marked caps stand 0.2 of their quad's longest edge high (quads 1 × 10: apex 2 out),
+// and come down where that crosses the hull. An 8 × 3 block whose marked tops (cells
+// x 2–5, every row; x 3 and 4 capped) fold into a valley at x = 4 with slopes `slope`:
+// at 0.5 the tall caps of the middle row lean across the valley into each other and come
+// down to twice the shortest edge times 0.5, which clears it; on the flat block they
+// stay tall. The caps of the outer rows stand on the footprint (edges of one hull
+// triangle) and keep that lowest height from the start.
+TEST(InterfaceSplit, TallCapsComeDownOnlyWhereTheyCrossTheHull) {
+  for (const double slope : {0.0, 0.5}) {
+    MixedMesh input = hexahedron_block(8, 3, 1, [&](const Vector3& point) {
+      return Vector3(point.x(), 10.0 * point.y(), point.z() + slope * std::abs(point.x() - 4.0));
+    });
+    const int marked = input.marker("hull_side");
+    for (std::size_t face = 0; face < input.face_count(FaceType::quad); ++face) {
+      const Index* nodes = input.face(FaceType::quad, face);
+      Vector3 middle = Vector3::Zero();
+      for (int corner = 0; corner < 4; ++corner)
+        middle += 0.25 * input.points[static_cast<std::size_t>(nodes[corner])];
+      const double top = 1.0 + slope * std::abs(middle.x() - 4.0);
+      if (std::abs(middle.z() - top) < 1e-12 && middle.x() > 2.0 && middle.x() < 6.0)
+        input.faces(FaceType::quad).markers[face] = marked;
+    }
+    const InterfaceResult result = split_interface(input, top_layer(8, 3, 1));
+    ASSERT_EQ(result.capped_cells, 6u);
+    EXPECT_EQ(result.lowered_caps, slope > 0.0 ? 6u : 4u);
+    EXPECT_EQ(invalid_cells(result.mesh), 0);
+    const double shortest = std::sqrt(1.0 + slope * slope);
+    int middle_caps = 0;
+    for (std::size_t cell = 0; cell < result.mesh.cell_count(CellType::pyramid); ++cell) {
+      const Index* nodes = result.mesh.cell(CellType::pyramid, cell);
+      Vector3 middle = Vector3::Zero();
+      for (int corner = 0; corner < 4; ++corner)
+        middle += 0.25 * result.mesh.points[static_cast<std::size_t>(nodes[corner])];
+      // The caps: on the tops over x 3–5.
+      if (std::abs(middle.x() - 3.5) > 1e-9 && std::abs(middle.x() - 4.5) > 1e-9) continue;
+      if (middle.z() < 0.9) continue;
+      const double height = (result.mesh.points[static_cast<std::size_t>(nodes[4])] - middle).norm();
+      const bool middle_row = middle.y() > 10.0 && middle.y() < 20.0;
+      middle_caps += middle_row;
+      EXPECT_NEAR(height, middle_row && slope == 0.0 ? 2.0 : shortest, 1e-9)
+          << "cap over (" << middle.x() << ", " << middle.y() << ")";
+    }
+    EXPECT_EQ(middle_caps, 2);
+  }
+}

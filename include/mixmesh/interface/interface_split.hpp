@@ -97,6 +97,7 @@ struct InterfaceResult {
   std::size_t pyramids = 0;
   std::size_t tetrahedra = 0;
   std::size_t capped_cells = 0;  // kept whole with pyramids outside (see InterfaceOptions)
+  std::size_t lowered_caps = 0;  // marked caps brought down where they crossed the hull
 };
 
 // Throws mixmesh::Error for a cell index out of range, an outer face number out of

@@ -1,0 +1,120 @@
+#include "cap_clearance.hpp"
+
+#include <algorithm>
+#include <map>
+#include <utility>
+#include <vector>
+
+#include <CGAL/AABB_traits.h>
+#include <CGAL/AABB_tree.h>
+#include <CGAL/AABB_triangle_primitive.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+
+#include "mixmesh/mesh/cell_geometry.hpp"
+
+namespace mixmesh::interface_detail {
+
+namespace {
+
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Triangle3 = Kernel::Triangle_3;
+using Point3 = Kernel::Point_3;
+using Primitive = CGAL::AABB_triangle_primitive<Kernel, std::vector<Triangle3>::const_iterator>;
+using HullTree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, Primitive>>;
+
+Point3 cgal_point(const Vector3& p) {
+  return {p.x(), p.y(), p.z()};
+}
+
+// The triangle pulled a millionth of the way towards its centroid: it then no longer
+// touches the triangles that share an edge or a corner with it, only those it crosses.
+Triangle3 shrunk(const MixedMesh& mesh, const std::array<Index, 3>& triangle) {
+  Vector3 corners[3];
+  for (int k = 0; k < 3; ++k)
+    corners[k] = mesh.points[static_cast<std::size_t>(triangle[static_cast<std::size_t>(k)])];
+  const Vector3 centroid = (corners[0] + corners[1] + corners[2]) / 3.0;
+  for (Vector3& corner : corners) corner += 1e-6 * (centroid - corner);
+  return {cgal_point(corners[0]), cgal_point(corners[1]), cgal_point(corners[2])};
+}
+
+}  // namespace
+
+std::size_t lower_crossing_caps(MixedMesh& mesh, const std::vector<std::array<Index, 3>>& hull,
+                                std::vector<TallCap>& caps) {
+  std::vector<char> lowered(caps.size(), 0);
+  // A cap on the footprint (a quad edge in the symmetry plane, used by one hull
+  // triangle) leans across the plane when tall on a sheet with dihedral: it keeps its
+  // lowest height.
+  std::map<std::pair<Index, Index>, int> edge_uses;
+  for (const auto& triangle : hull)
+    for (std::size_t k = 0; k < 3; ++k) {
+      const Index a = triangle[k], b = triangle[(k + 1) % 3];
+      ++edge_uses[{std::min(a, b), std::max(a, b)}];
+    }
+  for (std::size_t cap = 0; cap < caps.size(); ++cap)
+    for (std::size_t k = 0; k < 4; ++k) {
+      const Index a = caps[cap].pyramid[k], b = caps[cap].pyramid[(k + 1) % 4];
+      if (edge_uses[{std::min(a, b), std::max(a, b)}] != 1) continue;
+      TallCap& tall = caps[cap];
+      Vector3& apex = mesh.points[static_cast<std::size_t>(tall.apex)];
+      const Vector3 before = apex;
+      apex = tall.middle + tall.lowest * tall.normal;
+      if (cell_shape(CellType::pyramid, mesh.points, tall.pyramid.data()).valid()) {
+        tall.height = tall.lowest;
+        lowered[cap] = 1;
+      } else {
+        apex = before;
+      }
+      break;
+    }
+  // Each round halves the crossing caps once; a cap comes down from its tall height to
+  // its lowest in a few rounds (the tall height is at most 0.4 / 2 = a fifth of the
+  // longest edge over the lowest, the shortest edge).
+  for (int round = 0; round < 12; ++round) {
+    std::vector<Triangle3> triangles;
+    triangles.reserve(hull.size());
+    for (const auto& triangle : hull)
+      triangles.emplace_back(cgal_point(mesh.points[static_cast<std::size_t>(triangle[0])]),
+                             cgal_point(mesh.points[static_cast<std::size_t>(triangle[1])]),
+                             cgal_point(mesh.points[static_cast<std::size_t>(triangle[2])]));
+    const HullTree tree(triangles.begin(), triangles.end());
+    std::vector<std::size_t> crossing;
+    std::vector<Primitive::Id> hits;
+    for (std::size_t cap = 0; cap < caps.size(); ++cap) {
+      if (!(caps[cap].height > caps[cap].lowest)) continue;
+      bool crosses = false;
+      for (std::size_t side = 0; side < 4 && !crosses; ++side) {
+        const std::size_t own = caps[cap].first_hull_triangle + side;
+        hits.clear();
+        tree.all_intersected_primitives(shrunk(mesh, hull[own]), std::back_inserter(hits));
+        for (const auto& hit : hits) {
+          const auto index = static_cast<std::size_t>(hit - triangles.begin());
+          if (index < caps[cap].first_hull_triangle || index >= caps[cap].first_hull_triangle + 4)
+            crosses = true;
+        }
+      }
+      if (crosses) crossing.push_back(cap);
+    }
+    if (crossing.empty()) break;
+    std::size_t moved = 0;
+    for (std::size_t cap : crossing) {
+      TallCap& tall = caps[cap];
+      Vector3& apex = mesh.points[static_cast<std::size_t>(tall.apex)];
+      const Vector3 before = apex;
+      const double height = std::max(tall.lowest, 0.5 * tall.height);
+      apex = tall.middle + height * tall.normal;
+      if (!cell_shape(CellType::pyramid, mesh.points, tall.pyramid.data()).valid()) {
+        apex = before;  // a twisted quad: no lower cap is valid
+        tall.lowest = tall.height;
+        continue;
+      }
+      tall.height = height;
+      lowered[cap] = 1;
+      ++moved;
+    }
+    if (moved == 0) break;
+  }
+  return static_cast<std::size_t>(std::count(lowered.begin(), lowered.end(), 1));
+}
+
+}  // namespace mixmesh::interface_detail

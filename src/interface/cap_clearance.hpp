@@ -1,0 +1,29 @@
+// Tall caps of a sheet's cells, lowered where they cross the hull.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <vector>
+
+#include "mixmesh/mesh/mixed_mesh.hpp"
+
+namespace mixmesh::interface_detail {
+
+// A cap whose apex stands above the lowest height its quad allows.
+struct TallCap {
+  Index apex = -1;
+  Vector3 middle = Vector3::Zero();     // of its quad
+  Vector3 normal = Vector3::Zero();     // of its quad, unit, outward
+  double height = 0.0;                  // the apex's height over the middle now
+  double lowest = 0.0;                  // the height it may come down to
+  std::array<Index, 5> pyramid{};       // quad corners, apex
+  std::size_t first_hull_triangle = 0;  // its four hull triangles follow in order
+};
+
+// Halves the height of every cap with a face crossing another hull triangle (not
+// below `lowest`, and not to an inverted pyramid), until no cap crosses or none can
+// come down further. Returns the number of caps lowered.
+std::size_t lower_crossing_caps(MixedMesh& mesh, const std::vector<std::array<Index, 3>>& hull,
+                                std::vector<TallCap>& caps);
+
+}  // namespace mixmesh::interface_detail
