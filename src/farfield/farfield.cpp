@@ -337,12 +337,21 @@ FarFieldResult farfield(const FarFieldInput& input, const FarFieldOptions& optio
     exact.points.insert(exact.points.end(), volume_points.begin(), volume_points.end());
     exact.holes = holes;
     exact.quality = false;
-    tetrahedra = farfield_parts::run_tetgen(exact);
-    original = tetrahedra.points;  // already in the original coordinates
-    for (std::size_t node = 0; node < exact.points.size(); ++node) original[node] = exact.points[node];
-    log.info("farfield: exact pass " + seconds_text(watch.seconds()) + ", " +
-             std::to_string(volume_points.size()) + " input volume points, " +
-             std::to_string(tetrahedra.tetrahedra.size()) + " tetrahedra");
+    // TetGen 1.5 can fail an assertion on near-degenerate input (flip41 on the points of
+    // a wing whose layers stopped round a crossing); the quality pass's tetrahedra are
+    // a sound mesh of the same boundary, so they are kept, isotropic, with a warning.
+    try {
+      farfield_parts::TetgenOutput exact_tetrahedra = farfield_parts::run_tetgen(exact);
+      tetrahedra = std::move(exact_tetrahedra);
+      original = tetrahedra.points;  // already in the original coordinates
+      for (std::size_t node = 0; node < exact.points.size(); ++node) original[node] = exact.points[node];
+      log.info("farfield: exact pass " + seconds_text(watch.seconds()) + ", " +
+               std::to_string(volume_points.size()) + " input volume points, " +
+               std::to_string(tetrahedra.tetrahedra.size()) + " tetrahedra");
+    } catch (const Error& error) {
+      log.warning(std::string(error.what()) + " in the exact pass; keeping the quality pass's tetrahedra");
+      volume_points.clear();
+    }
   }
   const std::size_t input_count = points.size() + volume_points.size();
 

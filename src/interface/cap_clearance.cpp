@@ -1,10 +1,12 @@
 #include "cap_clearance.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <utility>
 #include <vector>
 
+#include <CGAL/AABB_segment_primitive.h>
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
 #include <CGAL/AABB_triangle_primitive.h>
@@ -21,6 +23,9 @@ using Triangle3 = Kernel::Triangle_3;
 using Point3 = Kernel::Point_3;
 using Primitive = CGAL::AABB_triangle_primitive<Kernel, std::vector<Triangle3>::const_iterator>;
 using HullTree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, Primitive>>;
+using Segment3 = Kernel::Segment_3;
+using SegmentPrimitive = CGAL::AABB_segment_primitive<Kernel, std::vector<Segment3>::const_iterator>;
+using SegmentTree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, SegmentPrimitive>>;
 
 Point3 cgal_point(const Vector3& p) {
   return {p.x(), p.y(), p.z()};
@@ -42,31 +47,41 @@ Triangle3 shrunk(const MixedMesh& mesh, const std::array<Index, 3>& triangle) {
 std::size_t lower_crossing_caps(MixedMesh& mesh, const std::vector<std::array<Index, 3>>& hull,
                                 std::vector<TallCap>& caps) {
   std::vector<char> lowered(caps.size(), 0);
-  // A cap on the footprint (a quad edge in the symmetry plane, used by one hull
-  // triangle) leans across the plane when tall on a sheet with dihedral: it keeps its
-  // lowest height.
+  // Near the footprint (the hull's edges in the symmetry plane, used by one hull
+  // triangle) a tall cap leans across the plane on a sheet with dihedral, and the slot
+  // between a tall cap and the plane fills with thin tetrahedra that fold under a pitch
+  // of the mesh. There a cap stands no higher than its distance from the footprint (and
+  // not below its lowest height): the caps rise from the plane at 45 degrees.
   std::map<std::pair<Index, Index>, int> edge_uses;
   for (const auto& triangle : hull)
     for (std::size_t k = 0; k < 3; ++k) {
       const Index a = triangle[k], b = triangle[(k + 1) % 3];
       ++edge_uses[{std::min(a, b), std::max(a, b)}];
     }
-  for (std::size_t cap = 0; cap < caps.size(); ++cap)
-    for (std::size_t k = 0; k < 4; ++k) {
-      const Index a = caps[cap].pyramid[k], b = caps[cap].pyramid[(k + 1) % 4];
-      if (edge_uses[{std::min(a, b), std::max(a, b)}] != 1) continue;
+  std::vector<Segment3> footprint;
+  for (const auto& [edge, uses] : edge_uses)
+    if (uses == 1)
+      footprint.emplace_back(cgal_point(mesh.points[static_cast<std::size_t>(edge.first)]),
+                             cgal_point(mesh.points[static_cast<std::size_t>(edge.second)]));
+  if (!footprint.empty()) {
+    SegmentTree segments(footprint.begin(), footprint.end());
+    segments.accelerate_distance_queries();
+    for (std::size_t cap = 0; cap < caps.size(); ++cap) {
       TallCap& tall = caps[cap];
+      const double limit = std::max(
+          tall.lowest, std::sqrt(CGAL::to_double(segments.squared_distance(cgal_point(tall.middle)))));
+      if (!(tall.height > limit)) continue;
       Vector3& apex = mesh.points[static_cast<std::size_t>(tall.apex)];
       const Vector3 before = apex;
-      apex = tall.middle + tall.lowest * tall.normal;
+      apex = tall.middle + limit * tall.normal;
       if (cell_shape(CellType::pyramid, mesh.points, tall.pyramid.data()).valid()) {
-        tall.height = tall.lowest;
+        tall.height = limit;
         lowered[cap] = 1;
       } else {
         apex = before;
       }
-      break;
     }
+  }
   // Each round halves the crossing caps once; a cap comes down from its tall height to
   // its lowest in a few rounds (the tall height is at most 0.4 / 2 = a fifth of the
   // longest edge over the lowest, the shortest edge).

@@ -337,6 +337,24 @@ InterfaceResult split_interface(const MixedMesh& mesh, const OuterLayer& layer,
       if (mesh.faces(FaceType::quad).markers[face] == capped_marker)
         capped_quads.insert(sorted_face_key(mesh.face(FaceType::quad, face), 4));
 
+  // Edges used by one outer face: the footprint on the symmetry plane. A marked
+  // hexahedron with its outer quad there is split, not capped: the cap's apex would
+  // stand half the quad's width from the plane, and the tetrahedra between it and the
+  // plane's triangles were flat (175-176 deg along the ONERA M6 wake's root).
+  std::map<std::pair<Index, Index>, int> outer_edge_uses;
+  for (const auto& [type, cells] :
+       {std::pair{CellType::hexahedron, &layer.hexahedra}, std::pair{CellType::prism, &layer.prisms}})
+    for (const OuterCell& outer : *cells) {
+      Index corners[4] = {-1, -1, -1, -1};
+      const int count = face_nodes(mesh, {type, static_cast<Index>(outer.cell), outer.outer_face}, corners);
+      for (int k = 0; k < count; ++k) ++outer_edge_uses[std::minmax(corners[k], corners[(k + 1) % count])];
+    }
+  auto on_footprint = [&](const Index* corners, int count) {
+    for (int k = 0; k < count; ++k)
+      if (outer_edge_uses[std::minmax(corners[k], corners[(k + 1) % count])] == 1) return true;
+    return false;
+  };
+
   // Nodes of the other outer faces: a hexahedron touching them is split as usual, so
   // caps stay away from where the marked hull meets the rest (a wake's trailing edge,
   // the tip trailing edge), whose faces meet at angles a cap could cross (a twisted tip).
@@ -370,20 +388,22 @@ InterfaceResult split_interface(const MixedMesh& mesh, const OuterLayer& layer,
     // A cell is split when a quad faces the far field; a prism whose outer faces are
     // triangles passes through and adds them to the hull as they are.
     // Cells with an outer quad tagged capped_marker are capped instead, except hexahedra
-    // that touch another outer face.
+    // that touch another outer face or have a marked quad on the footprint.
     std::vector<char> split(outer_faces.size(), 0), capped(outer_faces.size(), 0);
     for (std::size_t cell : order) {
-      bool quad = false;
+      bool quad = false, footprint = false;
       for (int face = 0; face < descriptor(type).face_count; ++face) {
         if (!((outer_faces[cell] >> face) & 1u)) continue;
         Index corners[4] = {-1, -1, -1, -1};
         if (face_nodes(mesh, {type, static_cast<Index>(cell), face}, corners) != 4) continue;
         quad = true;
-        capped[cell] = capped[cell] || capped_quads.count(sorted_face_key(corners, 4)) > 0;
+        const bool marked = capped_quads.count(sorted_face_key(corners, 4)) > 0;
+        capped[cell] = capped[cell] || marked;
+        footprint = footprint || (marked && on_footprint(corners, 4));
       }
       const Index* nodes = mesh.cell(type, cell);
       auto plain = [&](Index node) { return plain_hull_node[static_cast<std::size_t>(node)] != 0; };
-      if (type == CellType::hexahedron && std::any_of(nodes, nodes + node_count(type), plain))
+      if (type == CellType::hexahedron && (footprint || std::any_of(nodes, nodes + node_count(type), plain)))
         capped[cell] = 0;
       split[cell] = quad && !capped[cell];
     }

@@ -348,11 +348,13 @@ TEST(InterfaceSplit, SplitIsTheSameOnOneThreadAndOnMany) {
 }
 
 // Cells whose outer quad carries capped_marker keep their shape and get a cap; a
-// hexahedron that also touches an outer face without it is split as usual. A 4 × 1
-// row: the tops of cells 2 and 3 are marked, cell 2 shares nodes with cell 1's plain
-// top, so only cell 3 is capped. The hull stays closed round the row's footprint.
+// hexahedron that also touches an outer face without it is split as usual, and so is
+// one whose marked quad has an edge on the footprint (the outline of the hull). A 5 × 3
+// block with the tops of cells x 2–4 marked: cell 2 of each row shares nodes with cell
+// 1's plain top, cell 4 and the outer rows reach the outline, so only the middle of the
+// middle row is capped. The hull stays closed round the footprint.
 TEST(InterfaceSplit, CellsOfMarkedOuterQuadsAreCappedNotSplit) {
-  MixedMesh input = hexahedron_block(4, 1, 1, [](const Vector3& point) { return point; });
+  MixedMesh input = hexahedron_block(5, 3, 1, [](const Vector3& point) { return point; });
   const int marked = input.marker("hull_side");
   for (std::size_t face = 0; face < input.face_count(FaceType::quad); ++face) {
     const Index* nodes = input.face(FaceType::quad, face);
@@ -364,16 +366,16 @@ TEST(InterfaceSplit, CellsOfMarkedOuterQuadsAreCappedNotSplit) {
     }
     if (top && x > 2.0) input.faces(FaceType::quad).markers[face] = marked;
   }
-  const OuterLayer layer = top_layer(4, 1, 1);
+  const OuterLayer layer = top_layer(5, 3, 1);
   const InterfaceResult result = split_interface(input, layer);
   EXPECT_EQ(result.capped_cells, 1u);
-  EXPECT_EQ(result.centres.size(), 3u);  // cells 0, 1 and 2 split about their centres
+  EXPECT_EQ(result.centres.size(), 14u);  // every other cell split about its centre
   EXPECT_EQ(result.mesh.cell_count(CellType::hexahedron), 1u);
   EXPECT_EQ(invalid_cells(result.mesh), 0);
   EXPECT_TRUE(match_faces(result.mesh).conforming());
-  // 3 split tops of 2 triangles, 1 cap of 4; open only along the footprint's 10 edges.
-  EXPECT_EQ(result.hull.size(), 10u);
-  EXPECT_EQ(hull_free_edges(result.hull).size(), 10u);
+  // 14 split tops of 2 triangles, 1 cap of 4; open only along the footprint's 16 edges.
+  EXPECT_EQ(result.hull.size(), 32u);
+  EXPECT_EQ(hull_free_edges(result.hull).size(), 16u);
   // Without the marker every cell is split.
   InterfaceOptions plain;
   plain.capped_marker.clear();
@@ -384,48 +386,72 @@ TEST(InterfaceSplit, CellsOfMarkedOuterQuadsAreCappedNotSplit) {
   EXPECT_THROW(split_interface(input, layer, flat), Error);
 }
 
+// A block of 8 × 5 × 1 cells of `size` (x, y, 1) whose tops are raised by `slope`
+// times the distance from x = 4 size.x (a valley there), the tops of cells 2–5 in x
+// marked, so the cells 3 and 4 of rows 1–3 are capped (rows 0 and 4 reach the footprint). Returns each cap's
+// height over its quad's middle, by that middle.
+std::vector<std::pair<Vector3, double>> cap_heights(const Vector3& size, double slope,
+                                                    InterfaceResult& result) {
+  MixedMesh input = hexahedron_block(8, 5, 1, [&](const Vector3& point) {
+    return Vector3(size.x() * point.x(), size.y() * point.y(),
+                   point.z() + slope * std::abs(size.x() * (point.x() - 4.0)));
+  });
+  const int marked = input.marker("hull_side");
+  for (std::size_t face = 0; face < input.face_count(FaceType::quad); ++face) {
+    const Index* nodes = input.face(FaceType::quad, face);
+    Vector3 middle = Vector3::Zero();
+    for (int corner = 0; corner < 4; ++corner)
+      middle += 0.25 * input.points[static_cast<std::size_t>(nodes[corner])];
+    const double top = 1.0 + slope * std::abs(middle.x() - 4.0 * size.x());
+    if (std::abs(middle.z() - top) < 1e-12 && middle.x() > 2.0 * size.x() && middle.x() < 6.0 * size.x())
+      input.faces(FaceType::quad).markers[face] = marked;
+  }
+  result = split_interface(input, top_layer(8, 5, 1));
+  std::vector<std::pair<Vector3, double>> heights;
+  for (std::size_t cell = 0; cell < result.mesh.cell_count(CellType::pyramid); ++cell) {
+    const Index* nodes = result.mesh.cell(CellType::pyramid, cell);
+    if (static_cast<std::size_t>(nodes[4]) < input.points.size()) continue;
+    Vector3 middle = Vector3::Zero();
+    for (int corner = 0; corner < 4; ++corner)
+      middle += 0.25 * result.mesh.points[static_cast<std::size_t>(nodes[corner])];
+    // Caps stand on the tops over x 3–5 size.x; the split cells' pyramids have their
+    // centre as apex, inside the cell, below its top.
+    const double top = 1.0 + slope * std::abs(middle.x() - 4.0 * size.x());
+    if (std::abs(middle.z() - top) > 1e-9 || middle.x() < 3.0 * size.x() || middle.x() > 5.0 * size.x())
+      continue;
+    heights.push_back({middle, (result.mesh.points[static_cast<std::size_t>(nodes[4])] - middle).norm()});
+  }
+  return heights;
+}
+
 // Marked caps stand 0.2 of their quad's longest edge high (quads 1 × 10: apex 2 out),
-// and come down where that crosses the hull. An 8 × 3 block whose marked tops (cells
-// x 2–5, every row; x 3 and 4 capped) fold into a valley at x = 4 with slopes `slope`:
-// at 0.5 the tall caps of the middle row lean across the valley into each other and come
-// down to twice the shortest edge times 0.5, which clears it; on the flat block they
-// stay tall. The caps of the outer rows stand on the footprint (edges of one hull
-// triangle) and keep that lowest height from the start.
+// and come down where that crosses the hull: at a valley slope of 0.5 the caps on
+// either side lean into each other and come down to twice the shortest edge times 0.5,
+// which clears them; on the flat block they stay tall.
 TEST(InterfaceSplit, TallCapsComeDownOnlyWhereTheyCrossTheHull) {
   for (const double slope : {0.0, 0.5}) {
-    MixedMesh input = hexahedron_block(8, 3, 1, [&](const Vector3& point) {
-      return Vector3(point.x(), 10.0 * point.y(), point.z() + slope * std::abs(point.x() - 4.0));
-    });
-    const int marked = input.marker("hull_side");
-    for (std::size_t face = 0; face < input.face_count(FaceType::quad); ++face) {
-      const Index* nodes = input.face(FaceType::quad, face);
-      Vector3 middle = Vector3::Zero();
-      for (int corner = 0; corner < 4; ++corner)
-        middle += 0.25 * input.points[static_cast<std::size_t>(nodes[corner])];
-      const double top = 1.0 + slope * std::abs(middle.x() - 4.0);
-      if (std::abs(middle.z() - top) < 1e-12 && middle.x() > 2.0 && middle.x() < 6.0)
-        input.faces(FaceType::quad).markers[face] = marked;
-    }
-    const InterfaceResult result = split_interface(input, top_layer(8, 3, 1));
+    InterfaceResult result;
+    const auto heights = cap_heights(Vector3(1, 10, 1), slope, result);
     ASSERT_EQ(result.capped_cells, 6u);
-    EXPECT_EQ(result.lowered_caps, slope > 0.0 ? 6u : 4u);
+    ASSERT_EQ(heights.size(), 6u);
+    EXPECT_EQ(result.lowered_caps, slope > 0.0 ? 6u : 0u);
     EXPECT_EQ(invalid_cells(result.mesh), 0);
     const double shortest = std::sqrt(1.0 + slope * slope);
-    int middle_caps = 0;
-    for (std::size_t cell = 0; cell < result.mesh.cell_count(CellType::pyramid); ++cell) {
-      const Index* nodes = result.mesh.cell(CellType::pyramid, cell);
-      Vector3 middle = Vector3::Zero();
-      for (int corner = 0; corner < 4; ++corner)
-        middle += 0.25 * result.mesh.points[static_cast<std::size_t>(nodes[corner])];
-      // The caps: on the tops over x 3–5.
-      if (std::abs(middle.x() - 3.5) > 1e-9 && std::abs(middle.x() - 4.5) > 1e-9) continue;
-      if (middle.z() < 0.9) continue;
-      const double height = (result.mesh.points[static_cast<std::size_t>(nodes[4])] - middle).norm();
-      const bool middle_row = middle.y() > 10.0 && middle.y() < 20.0;
-      middle_caps += middle_row;
-      EXPECT_NEAR(height, middle_row && slope == 0.0 ? 2.0 : shortest, 1e-9)
+    for (const auto& [middle, height] : heights)
+      EXPECT_NEAR(height, slope == 0.0 ? 2.0 : shortest, 1e-9)
           << "cap over (" << middle.x() << ", " << middle.y() << ")";
-    }
-    EXPECT_EQ(middle_caps, 2);
   }
+}
+
+// Next to the footprint (the hull's free edges, here the block's sides) a cap stands no
+// higher than its quad's middle is from it: on quads 10 × 1 (tall height 2) the caps of
+// rows 1 and 3 (1.5 from the side) stand 1.5, those of the middle row (2.5) stay at 2.
+TEST(InterfaceSplit, CapsRiseFromTheFootprintAtFortyFiveDegrees) {
+  InterfaceResult result;
+  const auto heights = cap_heights(Vector3(10, 1, 1), 0.0, result);
+  ASSERT_EQ(heights.size(), 6u);
+  EXPECT_EQ(result.lowered_caps, 4u);
+  for (const auto& [middle, height] : heights)
+    EXPECT_NEAR(height, std::abs(middle.y() - 2.5) < 1e-9 ? 2.0 : 1.5, 1e-9)
+        << "cap over (" << middle.x() << ", " << middle.y() << ")";
 }
