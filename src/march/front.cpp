@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <set>
 #include <unordered_map>
 
 #include "mixmesh/core/error.hpp"
@@ -347,9 +348,8 @@ Front build_front(const SurfaceMesh& surface) {
   // layers did not close round it on the plane).
   std::vector<char> on_sheet_free_edge(point_count, 0);
   auto on_plane = [&](Index node) {
-    return surface.symmetry_tolerance >= 0.0 &&
-           std::abs(surface.points[static_cast<std::size_t>(node)].y() - surface.symmetry_y) <=
-               surface.symmetry_tolerance;
+    return surface.symmetry_tolerance >= 0.0 && std::abs(surface.points[static_cast<std::size_t>(node)].y() -
+                                                         surface.symmetry_y) <= surface.symmetry_tolerance;
   };
   {
     std::unordered_map<std::uint64_t, int> sheet_uses;
@@ -363,33 +363,64 @@ Front build_front(const SurfaceMesh& surface) {
         sheet_uses[key] += face.wake ? 1 : 1000;
       }
     for (const auto& [key, uses] : sheet_uses)
-      if (uses == 1 && !(on_plane(static_cast<Index>(key >> 32)) && on_plane(static_cast<Index>(key & 0xffffffffu)))) {
+      if (uses == 1 &&
+          !(on_plane(static_cast<Index>(key >> 32)) && on_plane(static_cast<Index>(key & 0xffffffffu)))) {
         on_sheet_free_edge[static_cast<std::size_t>(key >> 32)] = 1;
         on_sheet_free_edge[static_cast<std::size_t>(key & 0xffffffffu)] = 1;
       }
   }
   std::vector<int> split_corner(faces.size(), -1);
   std::vector<std::pair<std::size_t, Index>> junction_nodes;  // (split face, sheet free-edge node)
+  // Edges of the sheet's faces: a wall face across the sheet that shares one at a node
+  // stands on the sheet's attachment (a blunt base, the wake leaving from its middle).
+  std::set<std::pair<Index, Index>> sheet_edges;
+  for (const SurfaceFace& face : faces)
+    if (face.wake)
+      for (int k = 0; k < face.corner_count; ++k)
+        sheet_edges.insert(std::minmax(face.nodes[static_cast<std::size_t>(k)],
+                                       face.nodes[static_cast<std::size_t>((k + 1) % face.corner_count)]));
+  auto on_attachment = [&](std::size_t f, int k) {
+    const int n = faces[f].corner_count;
+    const Index node = faces[f].nodes[static_cast<std::size_t>(k)];
+    for (int step : {1, n - 1})
+      if (sheet_edges.count(std::minmax(node, faces[f].nodes[static_cast<std::size_t>((k + step) % n)])))
+        return true;
+    return false;
+  };
+  // Joins a wall face across the sheet to the line on the side of the sheet its centre
+  // lies, as the wing's surfaces do at a sharp trailing edge (a wall line of its own
+  // would march into the sheet).
+  auto join_by_centre = [&](Index node, std::size_t f, int k) {
+    Vector3 centre = Vector3::Zero();
+    for (int c = 0; c < faces[f].corner_count; ++c)
+      centre += surface.points[static_cast<std::size_t>(faces[f].nodes[static_cast<std::size_t>(c)])] /
+                faces[f].corner_count;
+    const double above = (centre - surface.points[static_cast<std::size_t>(node)])
+                             .dot(wake_normal[static_cast<std::size_t>(node)]);
+    corner_side[f][static_cast<std::size_t>(k)] = above >= 0.0 ? +1 : -1;
+  };
   for (auto& [node, fan] : across) {
-    const JunctionPlan plan = plan_junction(surface, faces, node, fan, wall_at_wake[node], corner_side,
+    // Faces on the attachment (a blunt base's) join by their centre at every node, also
+    // where the sheet's free edge starts (the base's end at a tip): the rest of the fan
+    // there (the tip cap's triangles) then lies between faces of either side and is
+    // split as at a sharp trailing edge. As a fan of their own the base's faces at the
+    // tip kept a line of their own, stopped at the first layer and left the hull open
+    // (every random wing with a base and a wake).
+    std::vector<std::pair<std::size_t, int>> rest;
+    for (const auto& [f, k] : fan) {
+      if (on_attachment(f, k))
+        join_by_centre(node, f, k);
+      else
+        rest.push_back({f, k});
+    }
+    if (rest.empty()) continue;
+    const JunctionPlan plan = plan_junction(surface, faces, node, rest, wall_at_wake[node], corner_side,
                                             wake_normal[static_cast<std::size_t>(node)].normalized());
     if (plan.face >= 0) {
       split_corner[static_cast<std::size_t>(plan.face)] = plan.corner;
       junction_nodes.push_back({static_cast<std::size_t>(plan.face), plan.sheet_node});
     } else if (!on_sheet_free_edge[static_cast<std::size_t>(node)]) {
-      // Wall faces across a sheet along its attachment, away from its free edges (a
-      // blunt base, the wake leaving from its middle): each joins the line on the side
-      // of the sheet its centre lies, as the wing's surfaces do at a sharp trailing
-      // edge. (A wall line of their own would march into the sheet.)
-      for (const auto& [f, k] : fan) {
-        Vector3 centre = Vector3::Zero();
-        for (int c = 0; c < faces[f].corner_count; ++c)
-          centre += surface.points[static_cast<std::size_t>(faces[f].nodes[static_cast<std::size_t>(c)])] /
-                    faces[f].corner_count;
-        const double above = (centre - surface.points[static_cast<std::size_t>(node)])
-                                 .dot(wake_normal[static_cast<std::size_t>(node)]);
-        corner_side[f][static_cast<std::size_t>(k)] = above >= 0.0 ? +1 : -1;
-      }
+      for (const auto& [f, k] : rest) join_by_centre(node, f, k);
     }
   }
   std::sort(junction_nodes.begin(), junction_nodes.end());

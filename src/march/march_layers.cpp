@@ -39,10 +39,16 @@ std::vector<Vector3> column_normals(const Front& front, const std::vector<Vector
                                     const std::vector<Vector3>& fallback, const std::vector<char>& on_wall,
                                     double wake_weight) {
   std::vector<Vector3> sum(positions.size(), Vector3::Zero());
-  auto add_corner = [&](std::size_t column, double weight, const Vector3& out, const Vector3& in) {
+  // A corner of nearly 180 degrees has no normal of its own (the cross product of two
+  // almost opposite edges points anywhere round them): it takes its face's. The split
+  // face at a blunt base's end is one: the base's node lies straight along the opening
+  // between the two lines of the sheet, and the corner's normal pointed downstream.
+  auto add_corner = [&](std::size_t column, double weight, const Vector3& out, const Vector3& in,
+                        const Vector3& face_area) {
     const Vector3 corner = out.cross(in);
     const double angle = std::atan2(corner.norm(), out.dot(in));
-    sum[column] += weight * angle * unit_or(corner, Vector3::Zero());
+    const bool straight = angle > 5.0 * M_PI / 6.0 && face_area.norm() > 0.0;
+    sum[column] += weight * angle * unit_or(straight ? face_area : corner, Vector3::Zero());
   };
   // Corners with an edge of no length yet (lines of a split or wrap face that start at
   // one point) wait for the normals the other corners give.
@@ -72,7 +78,7 @@ std::vector<Vector3> column_normals(const Front& front, const std::vector<Vector
         unopened.push_back({face, k, weight});
         continue;
       }
-      add_corner(column, weight, at(k + 1) - at(k), at(k - 1) - at(k));
+      add_corner(column, weight, at(k + 1) - at(k), at(k - 1) - at(k), area);
     }
   }
   // Such an edge is the edge of the quad it opens into: it opens along the difference of
@@ -87,9 +93,12 @@ std::vector<Vector3> column_normals(const Front& front, const std::vector<Vector
     };
     auto edge = [&](int to) -> Vector3 {
       if (positions[column(to)] != positions[column(k)]) return positions[column(to)] - positions[column(k)];
-      return unit_or(provisional[column(to)], Vector3::Zero()) - unit_or(provisional[column(k)], Vector3::Zero());
+      return unit_or(provisional[column(to)], Vector3::Zero()) -
+             unit_or(provisional[column(k)], Vector3::Zero());
     };
-    add_corner(column(k), corner.weight, edge(k + 1), edge(k - 1));
+    Vector3 area = Vector3::Zero();
+    for (int c = 0; c < n; ++c) area += positions[column(c)].cross(positions[column(c + 1)]);
+    add_corner(column(k), corner.weight, edge(k + 1), edge(k - 1), area);
   }
   std::vector<Vector3> normals(positions.size());
   for (std::size_t c = 0; c < positions.size(); ++c) {
@@ -283,7 +292,8 @@ Vector3 fade_towards_symmetry(const Vector3& direction, double distance, double 
 // split by stopped ones into groups that share no edge at the line, the layer's cells
 // of different groups touch along that line alone and the hull pinches there (an edge
 // on four hull faces). All but the largest group stop too, until no line is pinched.
-void close_pinched_lines(const Front& front, const std::vector<char>& face_active, std::vector<int>& stopping) {
+void close_pinched_lines(const Front& front, const std::vector<char>& face_active,
+                         std::vector<int>& stopping) {
   std::vector<char> growing = face_active;
   for (int face : stopping) growing[static_cast<std::size_t>(face)] = 0;
   std::vector<int> lines;
@@ -371,8 +381,8 @@ BoundaryLayer march_layers(const SurfaceMesh& surface, const MarchOptions& optio
       const FrontFace& front_face = front.faces[face];
       Vector3 centre = Vector3::Zero();
       for (int k = 0; k < front_face.corner_count; ++k)
-        centre += surface.points[static_cast<std::size_t>(
-                      front.column_node[static_cast<std::size_t>(front_face.columns[static_cast<std::size_t>(k)])])] /
+        centre += surface.points[static_cast<std::size_t>(front.column_node[static_cast<std::size_t>(
+                      front_face.columns[static_cast<std::size_t>(k)])])] /
                   front_face.corner_count;
       if ((centre - forced.centre).norm() <= forced.radius)
         stop_at[face] = std::min(stop_at[face], std::max(0, forced.layer));
@@ -430,7 +440,14 @@ BoundaryLayer march_layers(const SurfaceMesh& surface, const MarchOptions& optio
     if (smoothed) {
       for (std::size_t c = 0; c < column_count; ++c)
         if (junction_line[c] && layer > 0) normal[c] = first_normal[c];
-      if (layer == 0) first_normal = normal;
+      if (layer == 0) {
+        // Their first normal also leaves the sheet on its own side (below): at a blunt
+        // base's end both lines see the base facing along the sheet, and without the
+        // sheet's faces (weighed out at the first layers) they would start as one.
+        for (std::size_t c = 0; c < column_count; ++c)
+          if (junction_line[c] && on_wall[c]) normal[c] = off_the_sheet(normal[c], sheet_normal[c]);
+        first_normal = normal;
+      }
     }
     for (std::size_t c = 0; c < column_count; ++c)
       if (on_wall[c] && !junction_line[c]) normal[c] = off_the_sheet(normal[c], sheet_normal[c]);
@@ -524,8 +541,8 @@ BoundaryLayer march_layers(const SurfaceMesh& surface, const MarchOptions& optio
     for (std::size_t c = 0; c < column_count; ++c) {
       if (surface.symmetry_tolerance >= 0.0 && !front.on_symmetry[c])
         next[c] = current[c] + step[c] * fade_towards_symmetry(unit_or(next[c] - current[c], normal[c]),
-                                                                current[c].y() - surface.symmetry_y,
-                                                                marched[c] + step[c]);
+                                                               current[c].y() - surface.symmetry_y,
+                                                               marched[c] + step[c]);
       next[c] = keep_in_sheet_end(current[c], next[c], conormals[c]);
       if (front.on_symmetry[c]) next[c].y() = surface.symmetry_y;
     }
@@ -601,13 +618,15 @@ BoundaryLayer march_layers(const SurfaceMesh& surface, const MarchOptions& optio
     if (!bad.empty()) close_pinched_lines(front, face_active, bad);
     // The slope round this layer's stops (breadth first, one layer per ring of faces).
     std::vector<int> ring = bad;
-    for (int face : bad) stop_at[static_cast<std::size_t>(face)] = std::min(stop_at[static_cast<std::size_t>(face)], layer);
+    for (int face : bad)
+      stop_at[static_cast<std::size_t>(face)] = std::min(stop_at[static_cast<std::size_t>(face)], layer);
     while (!ring.empty()) {
       std::vector<int> next_ring;
       for (int face : ring)
         for (int neighbour : face_neighbours[static_cast<std::size_t>(face)]) {
           const int limit = stop_at[static_cast<std::size_t>(face)] + 1;
-          if (limit >= static_cast<int>(steps.size()) || stop_at[static_cast<std::size_t>(neighbour)] <= limit)
+          if (limit >= static_cast<int>(steps.size()) ||
+              stop_at[static_cast<std::size_t>(neighbour)] <= limit)
             continue;
           stop_at[static_cast<std::size_t>(neighbour)] = limit;
           next_ring.push_back(neighbour);
@@ -664,7 +683,8 @@ BoundaryLayer march_layers(const SurfaceMesh& surface, const MarchOptions& optio
     report.total_thickness += steps[static_cast<std::size_t>(layer)];
   for (auto& [layer, region] : stopped) {
     region.location /= region.faces;
-    for (std::size_t k = static_cast<std::size_t>(layer); k < steps.size(); ++k) region.thickness_lost += steps[k];
+    for (std::size_t k = static_cast<std::size_t>(layer); k < steps.size(); ++k)
+      region.thickness_lost += steps[k];
     report.stopped_faces += region.faces;
     report.stopped.push_back(region);
   }

@@ -121,6 +121,21 @@ TEST(MarchWing, BluntBaseLayersCloseOnTheSymmetryPlane) {
   EXPECT_TRUE(validate(layer.mesh).valid());
 }
 
+// At the tip's end of a blunt base the wake's free edge starts: the base's faces join
+// the lines above and below the sheet there too, and the tip triangle across the sheet
+// is split between them. Before, that end of the base kept a line of its own, the two
+// sheet lines there started as one, and the base's last faces stopped at the first layer.
+TEST(MarchWing, BluntBaseWithAWakeGrowsItsFirstLayersAtTheTip) {
+  march_surfaces::TestWing wing = coarse_wing(8);
+  wing.blunt_base = true;
+  MarchOptions options = wing_options();
+  options.spacing.layer_count = 4;
+  const BoundaryLayer layer = march_layers(march_surfaces::wing(wing), options);
+  EXPECT_EQ(layer.report.stopped_faces, 0);
+  EXPECT_EQ(march_surfaces::invalid_cell_count(layer.mesh), 0);
+  EXPECT_TRUE(match_faces(layer.mesh).conforming());
+}
+
 TEST(MarchWing, WakeEndLinesStayInTheEndPlaneAndTheTipEdgeStaysFree) {
   // Untapered, unswept, twisted: the wake ends in the plane x = const, its sheet tilts
   // from root to tip. Every line from the end stays in that plane to the last bit
