@@ -76,10 +76,11 @@ struct TetgenInput {
 };
 
 // What TetGen's intersection test (-d) found: how many boundary triangles intersect
-// and the centre of the first.
+// and the centre of each (the first first).
 struct IntersectionFound {
   std::size_t count = 0;
   Vector3 first = Vector3::Zero();
+  std::vector<Vector3> centres;
 };
 
 struct TetgenOutput {

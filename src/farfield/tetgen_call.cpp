@@ -84,11 +84,16 @@ IntersectionFound find_intersections(const TetgenInput& input) {
   if (out.numberoftrifaces <= 0 || out.trifacelist == nullptr) return {};
   IntersectionFound found;
   found.count = static_cast<std::size_t>(out.numberoftrifaces);
-  for (int corner = 0; corner < 3; ++corner) {
-    const int node = out.trifacelist[corner];
-    found.first +=
-        Vector3(out.pointlist[3 * node], out.pointlist[3 * node + 1], out.pointlist[3 * node + 2]) / 3.0;
+  for (std::size_t face = 0; face < found.count; ++face) {
+    Vector3 centre = Vector3::Zero();
+    for (std::size_t corner = 0; corner < 3; ++corner) {
+      const int node = out.trifacelist[3 * face + corner];
+      centre +=
+          Vector3(out.pointlist[3 * node], out.pointlist[3 * node + 1], out.pointlist[3 * node + 2]) / 3.0;
+    }
+    found.centres.push_back(centre);
   }
+  found.first = found.centres.front();
   return found;
 }
 
@@ -163,15 +168,20 @@ bool receive(isolated_detail::Channel& channel, TetgenOutput& output) {
 }
 
 void send(isolated_detail::Channel& channel, const IntersectionFound& found) {
-  channel.write_vector(std::vector<double>{static_cast<double>(found.count), found.first.x(), found.first.y(),
-                                           found.first.z()});
+  std::vector<double> values{static_cast<double>(found.count)};
+  for (const Vector3& centre : found.centres)
+    values.insert(values.end(), {centre.x(), centre.y(), centre.z()});
+  channel.write_vector(values);
 }
 
 bool receive(isolated_detail::Channel& channel, IntersectionFound& found) {
   std::vector<double> values;
-  if (!channel.read_vector(values) || values.size() != 4) return false;
+  if (!channel.read_vector(values) || values.empty() || (values.size() - 1) % 3 != 0) return false;
   found.count = static_cast<std::size_t>(values[0]);
-  found.first = Vector3(values[1], values[2], values[3]);
+  found.centres.clear();
+  for (std::size_t k = 1; k < values.size(); k += 3)
+    found.centres.emplace_back(values[k], values[k + 1], values[k + 2]);
+  if (!found.centres.empty()) found.first = found.centres.front();
   return true;
 }
 
@@ -228,7 +238,7 @@ TetgenOutput run_tetgen(const TetgenInput& input) {
       throw HullIntersectionError("farfield: the boundary intersects itself (" + std::to_string(found.count) +
                                       " intersecting boundary triangles, the first near " +
                                       point_text(found.first) + ")",
-                                  found.first);
+                                  found.centres);
     throw;
   }
 }

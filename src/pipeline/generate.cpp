@@ -203,13 +203,13 @@ GenerateResult generate_from_surface(const SurfaceMesh& surface, const GenerateO
     // includes the wake.
     if (farfield_options.reference_chord <= 0.0 && options.surface.wing)
       farfield_options.reference_chord = options.surface.wing->stations.front().chord;
-    std::optional<Vector3> crossing;
+    std::vector<Vector3> crossings;
     farfield_result = run_stage("farfield", report, [&]() -> std::optional<FarFieldResult> {
       try {
         return farfield(farfield_input, farfield_options, log);
       } catch (const HullIntersectionError& error) {
         if (attempt < options.hull_retries) {
-          crossing = error.location;
+          crossings = error.locations;
           return std::nullopt;
         }
         throw Error(error.what() + layer_hint(layers.report));
@@ -229,20 +229,32 @@ GenerateResult generate_from_surface(const SurfaceMesh& surface, const GenerateO
       // strongly tapered tip's trailing edge, a stop the blending could not smooth): the
       // columns round the crossing stop lower and slope down to it, and the stages run
       // again. Each retry reaches further and lower.
-      ForcedStop stop;
-      stop.centre = *crossing;
+      // Every crossing TetGen found gets a stop (one for all the crossings within half a
+      // stop's reach of it): a blunt base crosses the sheet's first lines all along the
+      // wing, and a stop at the first crossing alone left the others.
       // Reach: three layer thicknesses and the surface cells there (twice the distance
       // to the nearest surface node; thin layers alone reached no face on a small wing),
       // growing with each retry; depth: four layers more each time.
-      double nearest_node = std::numeric_limits<double>::infinity();
-      for (const Vector3& point : surface.points)
-        nearest_node = std::min(nearest_node, (point - *crossing).norm());
-      stop.radius = (attempt + 1) * (3.0 * layers.report.total_thickness + 2.0 * nearest_node);
-      stop.layer = std::max(1, march_options.spacing.layer_count - 4 * (attempt + 1));
-      march_options.forced_stops.push_back(stop);
-      log.warning("farfield: the hull intersects itself near " + point_text(*crossing) +
-                  "; the layers within " + std::to_string(stop.radius) + " m of it stop by layer " +
-                  std::to_string(stop.layer) + " (retry " + std::to_string(attempt + 1) + " of " +
+      std::vector<ForcedStop> stops;
+      for (const Vector3& crossing : crossings) {
+        double nearest_node = std::numeric_limits<double>::infinity();
+        for (const Vector3& point : surface.points)
+          nearest_node = std::min(nearest_node, (point - crossing).norm());
+        ForcedStop stop;
+        stop.centre = crossing;
+        stop.radius = (attempt + 1) * (3.0 * layers.report.total_thickness + 2.0 * nearest_node);
+        stop.layer = std::max(1, march_options.spacing.layer_count - 4 * (attempt + 1));
+        const bool covered = std::any_of(stops.begin(), stops.end(), [&](const ForcedStop& other) {
+          return (other.centre - crossing).norm() < 0.5 * other.radius;
+        });
+        if (!covered) stops.push_back(stop);
+      }
+      march_options.forced_stops.insert(march_options.forced_stops.end(), stops.begin(), stops.end());
+      log.warning("farfield: the hull intersects itself near " + point_text(crossings.front()) + " (" +
+                  std::to_string(crossings.size()) + " crossing triangles); the layers within " +
+                  std::to_string(stops.front().radius) + " m of " + std::to_string(stops.size()) +
+                  (stops.size() == 1 ? " place" : " places") + " stop by layer " +
+                  std::to_string(stops.front().layer) + " (retry " + std::to_string(attempt + 1) + " of " +
                   std::to_string(options.hull_retries) + ")");
     }
   }

@@ -48,21 +48,27 @@ enum class FarFieldSizing { isotropic, anisotropic };
 // `location` is the centre of the first intersecting boundary triangle.
 class HullIntersectionError : public Error {
  public:
-  HullIntersectionError(const std::string& message, const Vector3& where) : Error(message), location(where) {}
-  Vector3 location;
+  HullIntersectionError(const std::string& message, const Vector3& where)
+      : Error(message), location(where), locations{where} {}
+  HullIntersectionError(const std::string& message, std::vector<Vector3> where)
+      : Error(message),
+        location(where.empty() ? Vector3::Zero() : where.front()),
+        locations(std::move(where)) {}
+  Vector3 location;                // the first crossing
+  std::vector<Vector3> locations;  // every crossing found (centres of the crossing triangles)
 };
 
 struct FarFieldOptions {
   FarFieldShape shape = FarFieldShape::sphere;
   FarFieldSizing sizing = FarFieldSizing::isotropic;  // generate's default is anisotropic
-  double reference_chord = 0.0;          // 0: the hull's extent in x
-  double radius_in_chords = 20.0;        // sphere radius or box half-width
-  double farfield_size_in_chords = 2.0;  // edge length on the outer boundary
-  double size_gradient = 0.25;           // size grows by this much per unit distance from the hull
-  double radius_edge_ratio = 1.5;        // TetGen -q bound
-  double symmetry_y = 0.0;               // the symmetry plane of an open hull
-  double symmetry_tolerance = 1e-9;      // × chord: how far off the plane a footprint node may be
-  double plane_minimum_angle = 25.0;     // degrees, quality bound of the symmetry-plane triangles
+  double reference_chord = 0.0;                       // 0: the hull's extent in x
+  double radius_in_chords = 20.0;                     // sphere radius or box half-width
+  double farfield_size_in_chords = 2.0;               // edge length on the outer boundary
+  double size_gradient = 0.25;        // size grows by this much per unit distance from the hull
+  double radius_edge_ratio = 1.5;     // TetGen -q bound
+  double symmetry_y = 0.0;            // the symmetry plane of an open hull
+  double symmetry_tolerance = 1e-9;   // × chord: how far off the plane a footprint node may be
+  double plane_minimum_angle = 25.0;  // degrees, quality bound of the symmetry-plane triangles
   // Anisotropic sizing.
   double layer_growth = 1.25;  // ratio of successive normal spacings
   // Points per column. One layer continuing the hull's cells gives the tetrahedra on the
