@@ -104,16 +104,21 @@ TEST(MarchWing, ThickWing) {
   check_wing(wing);
 }
 
+// Four layers on the coarse wing with a blunt base and the wake leaving from its middle.
+BoundaryLayer blunt_base_layers() {
+  march_surfaces::TestWing wing = coarse_wing(8);
+  wing.blunt_base = true;
+  MarchOptions options = wing_options();
+  options.spacing.layer_count = 4;
+  return march_layers(march_surfaces::wing(wing), options);
+}
+
 // A blunt base with the wake leaving from its middle: at the root the sheet's edge lies
 // in the symmetry plane, which closes it, so the base faces there join the lines above
 // and below the sheet like the rest of the base; as a free edge of the sheet they got
 // a line of their own and the layers' faces on the plane did not close round it.
 TEST(MarchWing, BluntBaseLayersCloseOnTheSymmetryPlane) {
-  march_surfaces::TestWing wing = coarse_wing(8);
-  wing.blunt_base = true;
-  MarchOptions options = wing_options();
-  options.spacing.layer_count = 4;
-  const BoundaryLayer layer = march_layers(march_surfaces::wing(wing), options);
+  const BoundaryLayer layer = blunt_base_layers();
   EXPECT_EQ(march_surfaces::invalid_cell_count(layer.mesh), 0);
   const FaceConnectivity faces = match_faces(layer.mesh);
   EXPECT_TRUE(faces.conforming());
@@ -126,11 +131,7 @@ TEST(MarchWing, BluntBaseLayersCloseOnTheSymmetryPlane) {
 // is split between them. Before, that end of the base kept a line of its own, the two
 // sheet lines there started as one, and the base's last faces stopped at the first layer.
 TEST(MarchWing, BluntBaseWithAWakeGrowsItsFirstLayersAtTheTip) {
-  march_surfaces::TestWing wing = coarse_wing(8);
-  wing.blunt_base = true;
-  MarchOptions options = wing_options();
-  options.spacing.layer_count = 4;
-  const BoundaryLayer layer = march_layers(march_surfaces::wing(wing), options);
+  const BoundaryLayer layer = blunt_base_layers();
   EXPECT_EQ(layer.report.stopped_faces, 0);
   EXPECT_EQ(march_surfaces::invalid_cell_count(layer.mesh), 0);
   EXPECT_TRUE(match_faces(layer.mesh).conforming());
