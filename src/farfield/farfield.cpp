@@ -338,8 +338,9 @@ FarFieldResult farfield(const FarFieldInput& input, const FarFieldOptions& optio
     exact.holes = holes;
     exact.quality = false;
     // TetGen 1.5 can fail an assertion on near-degenerate input (flip41 on the points of
-    // a wing whose layers stopped round a crossing); the quality pass's tetrahedra are
-    // a sound mesh of the same boundary, so they are kept, isotropic, with a warning.
+    // a wing whose layers stopped round a crossing); with the anisotropic sizing the
+    // quality pass's tetrahedra are a sound mesh of the same boundary in the original
+    // coordinates, so they are kept, isotropic, with a warning.
     try {
       farfield_parts::TetgenOutput exact_tetrahedra = farfield_parts::run_tetgen(exact);
       tetrahedra = std::move(exact_tetrahedra);
@@ -349,6 +350,9 @@ FarFieldResult farfield(const FarFieldInput& input, const FarFieldOptions& optio
                std::to_string(volume_points.size()) + " input volume points, " +
                std::to_string(tetrahedra.tetrahedra.size()) + " tetrahedra");
     } catch (const Error& error) {
+      // Only the anisotropic pass may fall back: the preconditioned one runs because
+      // the quality pass's tetrahedra are flat once mapped back.
+      if (options.sizing != FarFieldSizing::anisotropic) throw;
       log.warning(std::string(error.what()) + " in the exact pass; keeping the quality pass's tetrahedra");
       volume_points.clear();
     }

@@ -181,6 +181,7 @@ bool receive(isolated_detail::Channel& channel, IntersectionFound& found) {
   found.centres.clear();
   for (std::size_t k = 1; k < values.size(); k += 3)
     found.centres.emplace_back(values[k], values[k + 1], values[k + 2]);
+  if (found.count > 0 && found.centres.empty()) return false;
   if (!found.centres.empty()) found.first = found.centres.front();
   return true;
 }
