@@ -137,7 +137,6 @@ FarFieldResult farfield(const FarFieldInput& input, const FarFieldOptions& optio
   }
   result.chord = options.reference_chord > 0.0 ? options.reference_chord : high.x() - low.x();
   if (!(result.chord > 0.0)) throw Error("farfield: the hull has no extent in x; set a reference chord");
-  const double radius = options.radius_in_chords * result.chord;
   const double farfield_size = options.farfield_size_in_chords * result.chord;
 
   // An open hull must be open along the symmetry plane only.
@@ -153,11 +152,18 @@ FarFieldResult farfield(const FarFieldInput& input, const FarFieldOptions& optio
                     ", which is off the symmetry plane y = " + std::to_string(options.symmetry_y));
   Vector3 centre = 0.5 * (low + high);
   if (symmetric) centre.y() = options.symmetry_y;
-  for (const Vector3& point : points)
-    if ((point - centre).norm() > 0.5 * radius)
-      throw Error("farfield: the hull point " + point_text(point) +
-                  " is too close to the far-field boundary (radius " + std::to_string(radius) +
-                  "); raise radius_in_chords");
+  // The boundary stands radius_in_chords chords from the hull's centre, and at least
+  // 2.2 times as far as the hull's farthest point: a slender, swept wing with its wake
+  // (44 deg sweep, 5.8 chords of semi-span, 10 chords of wake) reaches beyond half of 20
+  // chords, and a batch of ordinary wings must not stop on a default.
+  double extent = 0.0;
+  for (const Vector3& point : points) extent = std::max(extent, (point - centre).norm());
+  double radius = options.radius_in_chords * result.chord;
+  if (2.0 * extent > radius) {
+    radius = 2.2 * extent;
+    log.info("farfield: radius raised to " + std::to_string(radius) + " m (" +
+             std::to_string(radius / result.chord) + " chords), 2.2 times the hull's extent");
+  }
 
   // Size field: each hull node's mean edge length, growing linearly away from the hull.
   std::vector<double> hull_size(points.size(), 0.0);

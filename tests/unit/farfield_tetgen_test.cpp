@@ -267,7 +267,25 @@ TEST(FarField, BadInputsAreRejected) {
   FarFieldOptions anisotropic = small_options();
   anisotropic.sizing = FarFieldSizing::anisotropic;
   EXPECT_THROW(farfield(without_metrics, anisotropic), Error);
+}
+
+// A radius too small for the hull (0.6 chords round a unit box) is raised to 2.2 times
+// the hull's extent from its centre, instead of stopping the run.
+TEST(FarField, BoundaryStandsAtLeastTwiceTheHullsExtentAway) {
+  const FarFieldInput input = box_hull(2, -0.5, 0.5, false);
   FarFieldOptions tiny = small_options();
   tiny.radius_in_chords = 0.6;
-  EXPECT_THROW(farfield(box_hull(2, -0.5, 0.5, false), tiny), Error);
+  const FarFieldResult result = farfield(input, tiny);
+  expect_sound_farfield(input, result, false);
+  Vector3 low = input.points.front(), high = low;
+  for (const Vector3& point : input.points) {
+    low = low.cwiseMin(point);
+    high = high.cwiseMax(point);
+  }
+  const Vector3 centre = 0.5 * (low + high);
+  double extent = 0.0, farthest = 0.0;
+  for (const Vector3& point : input.points) extent = std::max(extent, (point - centre).norm());
+  for (const Vector3& point : result.mesh.points) farthest = std::max(farthest, (point - centre).norm());
+  EXPECT_GT(farthest, 2.0 * extent);
+  EXPECT_LT(farthest, 2.3 * extent);
 }
