@@ -2,8 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
-#include <utility>
 #include <vector>
 
 #include <CGAL/AABB_segment_primitive.h>
@@ -12,6 +10,7 @@
 #include <CGAL/AABB_triangle_primitive.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
+#include "mixmesh/interface/interface_split.hpp"
 #include "mixmesh/mesh/cell_geometry.hpp"
 
 namespace mixmesh::interface_detail {
@@ -42,6 +41,20 @@ Triangle3 shrunk(const MixedMesh& mesh, const std::array<Index, 3>& triangle) {
   return {cgal_point(corners[0]), cgal_point(corners[1]), cgal_point(corners[2])};
 }
 
+// Moves the cap's apex to `height` over its quad, unless the pyramid would be inverted
+// there (a twisted quad); says whether it moved.
+bool lower_to(MixedMesh& mesh, TallCap& cap, double height) {
+  Vector3& apex = mesh.points[static_cast<std::size_t>(cap.apex)];
+  const Vector3 before = apex;
+  apex = cap.middle + height * cap.normal;
+  if (!cell_shape(CellType::pyramid, mesh.points, cap.pyramid.data()).valid()) {
+    apex = before;
+    return false;
+  }
+  cap.height = height;
+  return true;
+}
+
 }  // namespace
 
 std::size_t lower_crossing_caps(MixedMesh& mesh, const std::vector<std::array<Index, 3>>& hull,
@@ -52,34 +65,18 @@ std::size_t lower_crossing_caps(MixedMesh& mesh, const std::vector<std::array<In
   // between a tall cap and the plane fills with thin tetrahedra that fold under a pitch
   // of the mesh. There a cap stands no higher than its distance from the footprint (and
   // not below its lowest height): the caps rise from the plane at 45 degrees.
-  std::map<std::pair<Index, Index>, int> edge_uses;
-  for (const auto& triangle : hull)
-    for (std::size_t k = 0; k < 3; ++k) {
-      const Index a = triangle[k], b = triangle[(k + 1) % 3];
-      ++edge_uses[{std::min(a, b), std::max(a, b)}];
-    }
   std::vector<Segment3> footprint;
-  for (const auto& [edge, uses] : edge_uses)
-    if (uses == 1)
-      footprint.emplace_back(cgal_point(mesh.points[static_cast<std::size_t>(edge.first)]),
-                             cgal_point(mesh.points[static_cast<std::size_t>(edge.second)]));
+  for (const auto& edge : hull_free_edges(hull))
+    footprint.emplace_back(cgal_point(mesh.points[static_cast<std::size_t>(edge[0])]),
+                           cgal_point(mesh.points[static_cast<std::size_t>(edge[1])]));
   if (!footprint.empty()) {
     SegmentTree segments(footprint.begin(), footprint.end());
     segments.accelerate_distance_queries();
     for (std::size_t cap = 0; cap < caps.size(); ++cap) {
-      TallCap& tall = caps[cap];
-      const double limit = std::max(
-          tall.lowest, std::sqrt(CGAL::to_double(segments.squared_distance(cgal_point(tall.middle)))));
-      if (!(tall.height > limit)) continue;
-      Vector3& apex = mesh.points[static_cast<std::size_t>(tall.apex)];
-      const Vector3 before = apex;
-      apex = tall.middle + limit * tall.normal;
-      if (cell_shape(CellType::pyramid, mesh.points, tall.pyramid.data()).valid()) {
-        tall.height = limit;
-        lowered[cap] = 1;
-      } else {
-        apex = before;
-      }
+      const double limit =
+          std::max(caps[cap].lowest,
+                   std::sqrt(CGAL::to_double(segments.squared_distance(cgal_point(caps[cap].middle)))));
+      if (caps[cap].height > limit && lower_to(mesh, caps[cap], limit)) lowered[cap] = 1;
     }
   }
   // Each round halves the crossing caps once; a cap comes down from its tall height to
@@ -114,16 +111,10 @@ std::size_t lower_crossing_caps(MixedMesh& mesh, const std::vector<std::array<In
     std::size_t moved = 0;
     for (std::size_t cap : crossing) {
       TallCap& tall = caps[cap];
-      Vector3& apex = mesh.points[static_cast<std::size_t>(tall.apex)];
-      const Vector3 before = apex;
-      const double height = std::max(tall.lowest, 0.5 * tall.height);
-      apex = tall.middle + height * tall.normal;
-      if (!cell_shape(CellType::pyramid, mesh.points, tall.pyramid.data()).valid()) {
-        apex = before;  // a twisted quad: no lower cap is valid
-        tall.lowest = tall.height;
+      if (!lower_to(mesh, tall, std::max(tall.lowest, 0.5 * tall.height))) {
+        tall.lowest = tall.height;  // a twisted quad: no lower cap is valid
         continue;
       }
-      tall.height = height;
       lowered[cap] = 1;
       ++moved;
     }

@@ -409,19 +409,18 @@ class SliverRemoval {
         for (double f : {0.05, 0.1, 0.2, 0.4}) trials.push_back(start + f * length * normal);
       Change change;
       change.operation = Operation::point_move;
-      change.before = tally();
+      change.before = change.after = tally();
       change.moved_point = p;
       for (const Vector3& trial : trials) {
         x = trial;
         const Tally here = tally();
-        if (here.better_than(change.after.worst == std::numeric_limits<double>::infinity() ? change.before
-                                                                                           : change.after)) {
+        if (here.better_than(change.after)) {
           change.after = here;
           change.moved_to = trial;
         }
       }
       x = start;
-      if (change.after.worst != std::numeric_limits<double>::infinity()) consider(std::move(change));
+      consider(std::move(change));  // taken only where a trial beat the start
     }
   }
 

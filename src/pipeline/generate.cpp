@@ -237,6 +237,10 @@ GenerateResult generate_from_surface(const SurfaceMesh& surface, const GenerateO
       // growing with each retry; depth: four layers more each time.
       std::vector<ForcedStop> stops;
       for (const Vector3& crossing : crossings) {
+        const bool covered = std::any_of(stops.begin(), stops.end(), [&](const ForcedStop& other) {
+          return (other.centre - crossing).norm() < 0.5 * other.radius;
+        });
+        if (covered) continue;
         double nearest_node = std::numeric_limits<double>::infinity();
         for (const Vector3& point : surface.points)
           nearest_node = std::min(nearest_node, (point - crossing).norm());
@@ -244,10 +248,7 @@ GenerateResult generate_from_surface(const SurfaceMesh& surface, const GenerateO
         stop.centre = crossing;
         stop.radius = (attempt + 1) * (3.0 * layers.report.total_thickness + 2.0 * nearest_node);
         stop.layer = std::max(1, march_options.spacing.layer_count - 4 * (attempt + 1));
-        const bool covered = std::any_of(stops.begin(), stops.end(), [&](const ForcedStop& other) {
-          return (other.centre - crossing).norm() < 0.5 * other.radius;
-        });
-        if (!covered) stops.push_back(stop);
+        stops.push_back(stop);
       }
       march_options.forced_stops.insert(march_options.forced_stops.end(), stops.begin(), stops.end());
       log.warning("farfield: the hull intersects itself near " + point_text(crossings.front()) + " (" +
