@@ -46,6 +46,13 @@ bool junction_valid(const JunctionCells& cells);
 // faces and the wrap face on the free edge from its node to the sheet columns.
 std::vector<int> junction_faces(const Front& front, const Junction& junction);
 
+// The first marching direction of each junction line (per column; zero for other
+// columns, and where no direction sees every face): the direction that sees its wall
+// faces and the opening of the wrap face best (visible_direction). The caller leans it
+// off the sheet on the line's side.
+std::vector<Vector3> junction_directions(const Front& front, const std::vector<Vector3>& points,
+                                         const std::vector<char>& face_active);
+
 // The junction whose split face is `face`, or nullptr.
 const Junction* junction_of(const Front& front, int face);
 

@@ -444,8 +444,10 @@ BoundaryLayer march_layers(const SurfaceMesh& surface, const MarchOptions& optio
         // Their first normal also leaves the sheet on its own side (below): at a blunt
         // base's end both lines see the base facing along the sheet, and without the
         // sheet's faces (weighed out at the first layers) they would start as one.
+        const std::vector<Vector3> seeing = march_detail::junction_directions(front, current, face_active);
         for (std::size_t c = 0; c < column_count; ++c)
-          if (junction_line[c] && on_wall[c]) normal[c] = off_the_sheet(normal[c], sheet_normal[c]);
+          if (junction_line[c] && on_wall[c])
+            normal[c] = off_the_sheet(seeing[c].squaredNorm() > 0.0 ? seeing[c] : normal[c], sheet_normal[c]);
         first_normal = normal;
       }
     }

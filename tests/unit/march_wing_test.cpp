@@ -137,6 +137,24 @@ TEST(MarchWing, BluntBaseWithAWakeGrowsItsFirstLayersAtTheTip) {
   EXPECT_TRUE(match_faces(layer.mesh).conforming());
 }
 
+// A base swept 37.5 degrees looks downstream and inboard while the tip looks outboard,
+// and the wake's free edge leaves the base's middle straight downstream. The junction's
+// lines took the base's normal (one of them leaned under the split tip triangle), and the
+// split triangle had an edge on the base, so its column's corner there was straight:
+// the split face stopped at the first layer (random wings with swept bases, seed 13).
+TEST(MarchWing, SweptBluntBaseWithAWakeGrowsEveryLayerAtTheTip) {
+  march_surfaces::TestWing wing = coarse_wing(8);
+  wing.blunt_base = true;
+  wing.sweep_degrees = 37.5;
+  wing.taper = 0.85;
+  MarchOptions options = wing_options();
+  options.spacing.layer_count = 8;
+  const BoundaryLayer layer = march_layers(march_surfaces::wing(wing), options);
+  EXPECT_EQ(layer.report.stopped_faces, 0);
+  EXPECT_EQ(march_surfaces::invalid_cell_count(layer.mesh), 0);
+  EXPECT_TRUE(match_faces(layer.mesh).conforming());
+}
+
 TEST(MarchWing, WakeEndLinesStayInTheEndPlaneAndTheTipEdgeStaysFree) {
   // Untapered, unswept, twisted: the wake ends in the plane x = const, its sheet tilts
   // from root to tip. Every line from the end stays in that plane to the last bit

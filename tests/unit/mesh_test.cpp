@@ -1,12 +1,14 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <utility>
 
 #include "mixmesh/mesh/cell_geometry.hpp"
 #include "mixmesh/mesh/face_connectivity.hpp"
 #include "mixmesh/mesh/topology.hpp"
+#include "mixmesh/mesh/visible_direction.hpp"
 #include "reference_cells.hpp"
 
 using namespace mixmesh;
@@ -167,4 +169,29 @@ TEST(MixedMesh, MarkersAreFoundOrAdded) {
   EXPECT_EQ(mesh.marker("farfield"), 1);
   EXPECT_EQ(mesh.marker("wall"), 0);
   EXPECT_EQ(mesh.find_marker("symmetry"), -1);
+}
+
+// A swept base's normal (cos 37.5, -sin 37.5, 0) and a flat tip's (0, 1, 0): the mean
+// direction sees the base at 64 degrees and the tip at 116; the best direction sees both
+// equally, along their bisector.
+TEST(VisibleDirection, SeesEveryFaceEquallyAtItsBest) {
+  const double sweep = 37.5 * M_PI / 180.0;
+  const Vector3 base(std::cos(sweep), -std::sin(sweep), 0.0), tip(0.0, 1.0, 0.0);
+  const Vector3 best = visible_direction({base, tip, base});
+  EXPECT_NEAR(best.norm(), 1.0, 1e-12);
+  EXPECT_NEAR(best.dot(base), best.dot(tip), 1e-12);
+  EXPECT_NEAR(best.dot(tip), std::cos(0.5 * (M_PI / 2.0 + sweep)), 1e-12);
+  // One face alone: its normal. A third face inside the cone of the two: no change.
+  EXPECT_NEAR((visible_direction({tip}) - tip).norm(), 0.0, 1e-12);
+  const Vector3 between = (base + tip).normalized();
+  EXPECT_NEAR((visible_direction({base, tip, between}) - best).norm(), 0.0, 1e-12);
+  // Three faces: the direction that sees them equally when that is the best.
+  const Vector3 up(0.0, 0.0, 1.0);
+  const Vector3 three = visible_direction({base, tip, up});
+  EXPECT_NEAR(three.dot(base), three.dot(up), 1e-12);
+  EXPECT_NEAR(three.dot(tip), three.dot(up), 1e-12);
+  EXPECT_GT(three.dot(up), 0.0);
+  // Normals all round: no direction sees every face.
+  EXPECT_EQ(visible_direction({up, -up, tip}), Vector3::Zero());
+  EXPECT_EQ(visible_direction({}), Vector3::Zero());
 }
