@@ -21,7 +21,8 @@ using Point = Kernel::Point_2;
 }  // namespace
 
 std::vector<Index> triangulate_planar_cap(std::vector<Vector3>& points, const std::vector<Index>& outline,
-                                          const TipCapOptions& options, bool normal_positive_y) {
+                                          const TipCapOptions& options, bool normal_positive_y,
+                                          const std::vector<std::array<Vector3, 2>>& inner_edges) {
   if (outline.size() < 3) throw Error("cap outline needs at least three nodes");
   if (!(options.minimum_angle_degrees > 0.0 && options.minimum_angle_degrees <= 20.7)) {
     throw Error(
@@ -48,6 +49,10 @@ std::vector<Index> triangulate_planar_cap(std::vector<Vector3>& points, const st
                 std::to_string(triangulation.number_of_vertices()) + " vertices for " +
                 std::to_string(outline.size()) + " outline nodes)");
   }
+  // An end at an outline point finds that point's vertex (insert returns it).
+  for (const auto& [from, to] : inner_edges)
+    triangulation.insert_constraint(triangulation.insert(Point(from.x(), from.z())),
+                                    triangulation.insert(Point(to.x(), to.z())));
   const double angle = options.minimum_angle_degrees * M_PI / 180.0;
   const double size = options.maximum_edge > 0.0 ? options.maximum_edge : longest;
   Mesher mesher(triangulation, Criteria(std::sin(angle) * std::sin(angle), size));
@@ -61,6 +66,12 @@ std::vector<Index> triangulate_planar_cap(std::vector<Vector3>& points, const st
   for (auto vertex = triangulation.finite_vertices_begin(); vertex != triangulation.finite_vertices_end();
        ++vertex) {
     if (outline_handles.count(vertex) != 0) continue;
+    // (An inner edge's end outside the outline touches no face of the cap.)
+    bool in_cap = false;
+    auto face = triangulation.incident_faces(vertex), end = face;
+    do in_cap |= !triangulation.is_infinite(face) && face->is_in_domain();
+    while (++face != end);
+    if (!in_cap) continue;
     vertex->info() = static_cast<Index>(points.size());
     points.emplace_back(vertex->point().x(), plane_y, vertex->point().y());
   }

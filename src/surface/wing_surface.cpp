@@ -204,7 +204,25 @@ SurfaceMesh generate_wing_surface(const WingDefinition& wing_input, const Surfac
   TrianglePatch tip;
   tip.name = "tip";
   const std::size_t first_cap_point = surface.points.size();
-  tip.triangles = triangulate_planar_cap(surface.points, tip_outline, options.tip, true);
+  // Where a wake leaves a blunt base's middle, the march splits the cap triangle at that
+  // node that straddles the sheet's plane between the lines above and below the sheet.
+  // Left to the refinement, the cap there is often two triangles, each with an edge on
+  // the base, and the split one's column then has a straight corner on the base's edge
+  // that folds as the layers grow. Two edges leaving the node upstream at 45 degrees
+  // above and below the sheet's plane, half the base's half-height long, make the split
+  // triangle stand off the base on both sides.
+  std::vector<std::array<Vector3, 2>> inner_edges;
+  if (blunt && options.wake.enabled) {
+    const Vector3& node = surface.points[static_cast<std::size_t>(trailing_edge.back())];
+    const double half_height =
+        0.5 * (surface.points[static_cast<std::size_t>(wing_patch.node(ni - 1, nj - 1))] -
+               surface.points[static_cast<std::size_t>(wing_patch.node(0, nj - 1))])
+                  .norm();
+    const double reach = 0.5 * half_height * std::sqrt(0.5);
+    const Vector3 above = node + Vector3(-reach, 0.0, reach), below = node + Vector3(-reach, 0.0, -reach);
+    inner_edges = {{node, above}, {node, below}, {above, below}};
+  }
+  tip.triangles = triangulate_planar_cap(surface.points, tip_outline, options.tip, true, inner_edges);
   if (options.tip.rounded) round_cap(surface.points, tip_outline, first_cap_point, true);
   surface.unstructured.push_back(std::move(tip));
   return surface;

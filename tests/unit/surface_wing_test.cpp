@@ -2,6 +2,7 @@
 // degenerate or folded faces) and geometry (areas, volume and sections against values
 // computed here independently from the airfoil data and the planform).
 #include <gtest/gtest.h>
+#include <set>
 
 #include <cmath>
 #include <fstream>
@@ -391,6 +392,52 @@ TEST(WingSurface, BluntTrailingEdgeIsClosedOrKeptAsABase) {
   EXPECT_EQ(based.structured[2].node(0, 3), base.node(base.ni / 2, 3));
   expect_closed_and_consistently_oriented(based);
   EXPECT_GT(enclosed_volume(based.points, faces_of(based).wall), 0.0);
+}
+
+// Where the wake leaves a base's middle at the tip, the march splits the cap triangle
+// there that straddles the sheet's plane. Left to the refinement that triangle had an
+// edge on the base (two cap triangles at the node), and its column's corner on the base
+// edge was straight and folded; the cap now has edges leaving the node above and below
+// the plane, and the straddling triangle touches the base at that node only.
+TEST(WingSurface, CapAtABasesWakeNodeStraddlesTheSheetOffTheBase) {
+  NacaOptions open;
+  open.closed_trailing_edge = false;
+  open.points_per_side = 81;
+  for (const double sweep : {0.0, 37.5}) {
+    ClassicPlanform planform;
+    planform.taper = 0.85;
+    planform.leading_edge_sweep_degrees = sweep;
+    WingDefinition wing = classic_wing(planform, naca_airfoil("0018", open));
+    wing.blunt_trailing_edge = TrailingEdge::base;
+    SurfaceOptions options;
+    options.chordwise_cells = 80;
+    options.spanwise_cells = 12;
+    const SurfaceMesh surface = generate_wing_surface(wing, options);
+    ASSERT_EQ(surface.structured.size(), 3u);
+    const StructuredPatch& base = surface.structured[1];
+    const StructuredPatch& wake = surface.structured[2];
+    const Index node = wake.node(0, wake.nj - 1);
+    std::set<Index> base_nodes;
+    for (int i = 0; i < base.ni; ++i) base_nodes.insert(base.node(i, base.nj - 1));
+    const double sheet_z = surface.points[static_cast<std::size_t>(node)].z();
+    int straddling = 0, fan = 0;
+    for (const TrianglePatch& patch : surface.unstructured)
+      for (std::size_t t = 0; t < patch.triangles.size(); t += 3) {
+        std::vector<Index> others;
+        for (std::size_t k = 0; k < 3; ++k)
+          if (patch.triangles[t + k] != node) others.push_back(patch.triangles[t + k]);
+        if (others.size() != 2) continue;
+        ++fan;
+        const double first = surface.points[static_cast<std::size_t>(others[0])].z() - sheet_z;
+        const double second = surface.points[static_cast<std::size_t>(others[1])].z() - sheet_z;
+        if (first * second >= 0.0) continue;
+        ++straddling;
+        EXPECT_EQ(base_nodes.count(others[0]) + base_nodes.count(others[1]), 0u) << "sweep " << sweep;
+      }
+    EXPECT_GE(fan, 3) << "sweep " << sweep;
+    EXPECT_EQ(straddling, 1) << "sweep " << sweep;
+    expect_closed_and_consistently_oriented(surface);
+  }
 }
 
 TEST(WingSurface, ConversionMarksLowerUpperTipAndWake) {

@@ -17,6 +17,8 @@
 //          TipCapOptions::rounded the interior nodes are lifted outward (y > semi-span).
 #pragma once
 
+#include <array>
+
 #include "mixmesh/geometry/planform.hpp"
 #include "mixmesh/surface/surface_mesh.hpp"
 
@@ -57,9 +59,12 @@ SurfaceMesh generate_wing_surface(const WingDefinition& wing, const SurfaceOptio
 // Triangulates a planar closed outline in the plane y = y_plane: outline holds point
 // indices into `points` in order (the last connects back to the first), all with
 // y = y_plane. New interior points are appended to `points`. Triangles come out with
-// their right-hand normal along +y when `normal_positive_y`, else -y.
+// their right-hand normal along +y when `normal_positive_y`, else -y. Each of
+// `inner_edges` (pairs of points in the plane, an end either an outline point or a new
+// one) becomes an edge of the triangulation, or a chain of edges along it.
 std::vector<Index> triangulate_planar_cap(std::vector<Vector3>& points, const std::vector<Index>& outline,
-                                          const TipCapOptions& options, bool normal_positive_y);
+                                          const TipCapOptions& options, bool normal_positive_y,
+                                          const std::vector<std::array<Vector3, 2>>& inner_edges = {});
 
 // Lifts points[first_interior ...] off the outline's plane (towards +y or -y) by
 // sqrt(h^2 - (z - c)^2), where c and h are the centre and half-height of the outline's
