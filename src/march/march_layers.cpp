@@ -376,15 +376,21 @@ BoundaryLayer march_layers(const SurfaceMesh& surface, const MarchOptions& optio
   // the next ring at k + 2 …, so the stack slopes down to a stopped region instead of
   // standing over it as a cliff (whose pit the far field's hull could not close).
   std::vector<int> stop_at(face_count, std::numeric_limits<int>::max());
+  // A face is in a stop's reach when its centroid or one of its nodes is: the faces at a
+  // wing's root are long spanwise, and a crossing at the root's trailing edge lay within
+  // no face's centroid reach, so the retries there changed nothing.
   for (const ForcedStop& forced : options.forced_stops)
     for (std::size_t face = 0; face < face_count; ++face) {
       const FrontFace& front_face = front.faces[face];
       Vector3 centre = Vector3::Zero();
-      for (int k = 0; k < front_face.corner_count; ++k)
-        centre += surface.points[static_cast<std::size_t>(front.column_node[static_cast<std::size_t>(
-                      front_face.columns[static_cast<std::size_t>(k)])])] /
-                  front_face.corner_count;
-      if ((centre - forced.centre).norm() <= forced.radius)
+      double nearest = std::numeric_limits<double>::infinity();
+      for (int k = 0; k < front_face.corner_count; ++k) {
+        const Vector3& node = surface.points[static_cast<std::size_t>(
+            front.column_node[static_cast<std::size_t>(front_face.columns[static_cast<std::size_t>(k)])])];
+        centre += node / front_face.corner_count;
+        nearest = std::min(nearest, (node - forced.centre).norm());
+      }
+      if (std::min(nearest, (centre - forced.centre).norm()) <= forced.radius)
         stop_at[face] = std::min(stop_at[face], std::max(0, forced.layer));
     }
   std::vector<std::vector<int>> face_neighbours(face_count);

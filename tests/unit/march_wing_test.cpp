@@ -155,6 +155,26 @@ TEST(MarchWing, SweptBluntBaseWithAWakeGrowsEveryLayerAtTheTip) {
   EXPECT_TRUE(match_faces(layer.mesh).conforming());
 }
 
+// generate lowers the layers round a place where the hull crossed itself. A stop whose
+// reach is smaller than the faces at the root's trailing edge (5 mm here) reaches them by
+// their nodes: by their centroids alone it reached none and the retries there changed
+// nothing (random wing 12 of seed 13, whose root faces are long spanwise).
+TEST(MarchWing, AForcedStopReachesTheLongFacesAtTheRoot) {
+  MarchOptions options = wing_options();
+  options.spacing.layer_count = 8;
+  ForcedStop stop;
+  stop.centre = Vector3(1.0, 0.0, 0.0);  // the root's trailing edge
+  stop.radius = 0.005;
+  stop.layer = 2;
+  options.forced_stops.push_back(stop);
+  const BoundaryLayer layer = march_layers(march_surfaces::wing(coarse_wing(8)), options);
+  int stopped = 0;
+  for (int layers : layer.face_layers) stopped += layers <= 2;
+  EXPECT_GT(stopped, 0);
+  EXPECT_EQ(march_surfaces::invalid_cell_count(layer.mesh), 0);
+  EXPECT_TRUE(match_faces(layer.mesh).conforming());
+}
+
 TEST(MarchWing, WakeEndLinesStayInTheEndPlaneAndTheTipEdgeStaysFree) {
   // Untapered, unswept, twisted: the wake ends in the plane x = const, its sheet tilts
   // from root to tip. Every line from the end stays in that plane to the last bit

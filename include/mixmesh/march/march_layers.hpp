@@ -40,7 +40,7 @@ enum class LayerSolve {
 // intersected itself).
 struct ForcedStop {
   Vector3 centre = Vector3::Zero();
-  double radius = 0.0;  // surface faces whose centroid lies within it
+  double radius = 0.0;  // surface faces whose centroid or a node lies within it
   int layer = 0;
 };
 
