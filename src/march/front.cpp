@@ -390,13 +390,24 @@ Front build_front(const SurfaceMesh& surface) {
   // Joins a wall face across the sheet to the line on the side of the sheet its centre
   // lies, as the wing's surfaces do at a sharp trailing edge (a wall line of its own
   // would march into the sheet).
+  // The offset along the face's edge on the sheet (a base's long quad on the attachment
+  // line) does not count: the sheet's normal at the node is a mean over its faces there,
+  // not square to that edge, and on a cranked wing's forward-swept trailing edge the two
+  // half-base quads at a node both came out on one side (1 mm across against 0.6 m along).
   auto join_by_centre = [&](Index node, std::size_t f, int k) {
+    const int n = faces[f].corner_count;
+    const Vector3& here = surface.points[static_cast<std::size_t>(node)];
     Vector3 centre = Vector3::Zero();
-    for (int c = 0; c < faces[f].corner_count; ++c)
-      centre += surface.points[static_cast<std::size_t>(faces[f].nodes[static_cast<std::size_t>(c)])] /
-                faces[f].corner_count;
-    const double above = (centre - surface.points[static_cast<std::size_t>(node)])
-                             .dot(wake_normal[static_cast<std::size_t>(node)]);
+    for (int c = 0; c < n; ++c)
+      centre += surface.points[static_cast<std::size_t>(faces[f].nodes[static_cast<std::size_t>(c)])] / n;
+    Vector3 offset = centre - here;
+    for (int step : {1, n - 1}) {
+      const Index other = faces[f].nodes[static_cast<std::size_t>((k + step) % n)];
+      if (!sheet_edges.count(std::minmax(node, other))) continue;
+      const Vector3 along = surface.points[static_cast<std::size_t>(other)] - here;
+      if (along.norm() > 0.0) offset -= offset.dot(along.normalized()) * along.normalized();
+    }
+    const double above = offset.dot(wake_normal[static_cast<std::size_t>(node)]);
     corner_side[f][static_cast<std::size_t>(k)] = above >= 0.0 ? +1 : -1;
   };
   for (auto& [node, fan] : across) {

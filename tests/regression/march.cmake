@@ -69,3 +69,17 @@ add_test(NAME march_wing_wake_end_in_plane_taper_1_check
          COMMAND ${MIXMESH_PYTHON} ${MIXMESH_CHECK_MESH} ${march_output}/wake_end/wing_variants.vtu --no-foam)
 set_tests_properties(march_wing_wake_end_in_plane_taper_1_check PROPERTIES LABELS regression
                      DEPENDS march_wing_wake_end_in_plane_taper_1)
+
+# The half-base quads at a cranked wing's kink (a forward-swept outboard trailing edge)
+# join the lines on their own side of the wake sheet: measured along their long edge
+# on the sheet, both came out on one side and the march stopped with "shared by 4 faces
+# on one side".
+add_test(NAME march_cranked_base_with_wake
+         COMMAND $<TARGET_FILE:mixmesh-cli> march ${CMAKE_CURRENT_LIST_DIR}/march_cranked_base.toml
+                 -o ${march_output}/cranked_base.vtu)
+set_tests_properties(march_cranked_base_with_wake PROPERTIES LABELS regression
+                     FAIL_REGULAR_EXPRESSION "faces stopped at layer" FIXTURES_SETUP march_cranked_base)
+add_test(NAME march_cranked_base_with_wake_check
+         COMMAND ${MIXMESH_PYTHON} ${MIXMESH_CHECK_MESH} ${march_output}/cranked_base.vtu --no-foam)
+set_tests_properties(march_cranked_base_with_wake_check PROPERTIES LABELS regression
+                     FIXTURES_REQUIRED march_cranked_base)
