@@ -11,6 +11,7 @@
 #include "deform/dual_mesh.hpp"
 #include "deform/layer_lines.hpp"
 #include "deform/rotation.hpp"
+#include "deform/untangle.hpp"
 #include "mixmesh/core/error.hpp"
 #include "mixmesh/quality/validity.hpp"
 
@@ -38,10 +39,11 @@ std::shared_ptr<const StartMesh> measure_start(const MixedMesh& mesh, const std:
   start->layer_seconds = layer_clock.seconds();
   const detail::LayerLines& layers = start->layers;
   log.detail("layer lines: " + std::to_string(layers.wall_columns) + " wall columns, " +
-             std::to_string(layers.sheet_faces) + " sheet faces with " + std::to_string(layers.sheet_columns) +
-             " columns, " + std::to_string(layers.line_nodes) + " line nodes, " +
-             std::to_string(layers.columns_to_boundary) + " columns reach a boundary (left to the method), " +
-             std::to_string(layers.conflicts) + " conflicts; " + std::to_string(start->layer_seconds) + " s");
+             std::to_string(layers.sheet_faces) + " sheet faces with " +
+             std::to_string(layers.sheet_columns) + " columns, " + std::to_string(layers.line_nodes) +
+             " line nodes, " + std::to_string(layers.columns_to_boundary) +
+             " columns reach a boundary (left to the method), " + std::to_string(layers.conflicts) +
+             " conflicts; " + std::to_string(start->layer_seconds) + " s");
   start->lines = detail::wall_lines(mesh, start->dual, roles);
   start->angles = wall_angles(mesh, start->lines);
   start->quality = detail::summarise_quality(mesh, start->dual, start->angles);
@@ -79,6 +81,12 @@ DeformResult step_from(const MixedMesh& mesh, const MixedMesh& reference, const 
   detail::project_sliding(boundary, mesh.points, points);
   detail::transport_layer_lines(measured->layers, boundary, mesh.points, points);
   detail::project_sliding(boundary, mesh.points, points);
+  const detail::UntangleReport untangled = detail::untangle(measured->dual, boundary, mesh.points, points);
+  if (untangled.inverted_before > 0)
+    log.detail("untangle: " + std::to_string(untangled.inverted_before) +
+               " inverted cells after the layer transport, " + std::to_string(untangled.inverted_after) +
+               " after " + std::to_string(untangled.rounds) + " rounds (" +
+               std::to_string(untangled.moved_nodes) + " nodes moved)");
 
   DeformResult result;
   result.mesh = mesh;

@@ -1,0 +1,38 @@
+// Untangling after the layer transport: the last stage of every step, for every method.
+//
+// Why: the methods repair their own inverted cells (ARA's eq. 27), but the layer
+// transport (layer_lines.hpp) runs after them and moves the line nodes while the nodes
+// beside the stacks keep the method's positions: the centres of the interface's split
+// cells, the nodes of split columns at the wake's root and end. Where the method's
+// field has a kink the transport spreads it down a line (ARA's velocity smoothing
+// stops at its tolerance with the predictor's kinks left near the symmetry plane: on
+// the ONERA M6 wake's end, nodes 2 cm from the plane lifted 5 cm less than those 5 cm
+// from it), and cells that mix both kinds of node fold.
+//
+// The repair moves the free nodes of the inverted cells, and rings of nodes round them
+// when that is not enough, to the position the least-squares affine map of their
+// neighbours' motion gives them (an affine motion, rotations included, is kept exactly,
+// so a node inside a rigidly turned region does not move). A region's move is kept only
+// when fewer of the cells it touches are inverted afterwards; nodes the motion prescribes
+// never move, sliding nodes stay in their plane.
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "deform/dual_mesh.hpp"
+#include "mixmesh/deform/deform.hpp"
+
+namespace mixmesh::deform::detail {
+
+struct UntangleReport {
+  std::size_t inverted_before = 0;
+  std::size_t inverted_after = 0;
+  int rounds = 0;
+  std::size_t moved_nodes = 0;
+};
+
+UntangleReport untangle(const DualMesh& dual, const BoundaryMotion& boundary,
+                        const std::vector<Vector3>& original, std::vector<Vector3>& moved);
+
+}  // namespace mixmesh::deform::detail
