@@ -16,6 +16,7 @@
 #include "layer_solver.hpp"
 #include "mixmesh/core/error.hpp"
 #include "mixmesh/mesh/cell_geometry.hpp"
+#include "mixmesh/mesh/visible_direction.hpp"
 
 namespace mixmesh {
 
@@ -253,6 +254,38 @@ Vector3 off_the_sheet(const Vector3& normal, const Vector3& sheet_normal) {
   return std::sqrt(1.0 - least * least) * in_plane.normalized() + least * sheet_normal;
 }
 
+// A first line below the plane of one of its wall faces inverts that face's first cell.
+// The angle-weighted normal can do that where faces of very different size and direction
+// meet: at a swept wing's sharp trailing edge on the symmetry plane, the line (held in
+// the plane) leaned under the upper surface's last face (random wing 12 of seed 12).
+// Such a line takes the direction that sees its wall faces best (in the plane for a
+// symmetry line).
+void see_every_wall_face(const Front& front, const std::vector<Vector3>& points,
+                         const std::vector<char>& face_active, const std::vector<char>& on_wall,
+                         const std::vector<char>& junction_line, std::vector<Vector3>& normal) {
+  std::vector<std::vector<Vector3>> fan(points.size());
+  for (std::size_t face = 0; face < front.faces.size(); ++face) {
+    const FrontFace& f = front.faces[face];
+    if (!f.wall || !face_active[face]) continue;
+    const Vector3 area = face_area_vector(points, f.columns.data(), f.corner_count);
+    if (area.norm() == 0.0) continue;
+    for (int k = 0; k < f.corner_count; ++k)
+      fan[static_cast<std::size_t>(f.columns[static_cast<std::size_t>(k)])].push_back(area.normalized());
+  }
+  for (std::size_t c = 0; c < points.size(); ++c) {
+    if (!on_wall[c] || junction_line[c] || fan[c].empty()) continue;
+    const bool below = std::any_of(fan[c].begin(), fan[c].end(), [&](const Vector3& face_normal) {
+      return face_normal.dot(normal[c]) <= 0.0;
+    });
+    if (!below) continue;
+    if (front.on_symmetry[c])
+      for (Vector3& face_normal : fan[c])
+        face_normal = unit_or(Vector3(face_normal.x(), 0.0, face_normal.z()), face_normal);
+    const Vector3 seeing = visible_direction(fan[c]);
+    if (seeing.squaredNorm() > 0.0) normal[c] = seeing;
+  }
+}
+
 // The last layer's step of each line: at least `fraction` of the shortest edge of the
 // active front faces at the line (MarchOptions::outer_layer_height). Lines on no active
 // face keep their step.
@@ -459,6 +492,7 @@ BoundaryLayer march_layers(const SurfaceMesh& surface, const MarchOptions& optio
     }
     for (std::size_t c = 0; c < column_count; ++c)
       if (on_wall[c] && !junction_line[c]) normal[c] = off_the_sheet(normal[c], sheet_normal[c]);
+    see_every_wall_face(front, current, face_active, on_wall, junction_line, normal);
 
     // Predictor: the layer normal, blended with the previous marching direction.
     const double memory = smoothed && layer > 0 ? options.direction_memory : 0.0;

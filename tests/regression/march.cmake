@@ -83,3 +83,16 @@ add_test(NAME march_cranked_base_with_wake_check
          COMMAND ${MIXMESH_PYTHON} ${MIXMESH_CHECK_MESH} ${march_output}/cranked_base.vtu --no-foam)
 set_tests_properties(march_cranked_base_with_wake_check PROPERTIES LABELS regression
                      FIXTURES_REQUIRED march_cranked_base)
+
+# A line that starts below the plane of one of its wall faces takes the direction that
+# sees them all (in the symmetry plane for a line there): the swept sharp trailing
+# edge's line on the plane leaned under the upper surface's last face.
+add_test(NAME march_swept_sharp_edge_on_the_plane
+         COMMAND $<TARGET_FILE:mixmesh-cli> march ${CMAKE_CURRENT_LIST_DIR}/march_swept_sharp_edge.toml
+                 -o ${march_output}/swept_sharp_edge.vtu)
+set_tests_properties(march_swept_sharp_edge_on_the_plane PROPERTIES LABELS regression
+                     FAIL_REGULAR_EXPRESSION "faces stopped at layer" FIXTURES_SETUP march_swept_sharp_edge)
+add_test(NAME march_swept_sharp_edge_on_the_plane_check
+         COMMAND ${MIXMESH_PYTHON} ${MIXMESH_CHECK_MESH} ${march_output}/swept_sharp_edge.vtu --no-foam)
+set_tests_properties(march_swept_sharp_edge_on_the_plane_check PROPERTIES LABELS regression
+                     FIXTURES_REQUIRED march_swept_sharp_edge)
