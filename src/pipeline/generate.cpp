@@ -234,7 +234,9 @@ GenerateResult generate_from_surface(const SurfaceMesh& surface, const GenerateO
       // wing, and a stop at the first crossing alone left the others.
       // Reach: three layer thicknesses and the surface cells there (twice the distance
       // to the nearest surface node; thin layers alone reached no face on a small wing),
-      // growing with each retry; depth: four layers more each time.
+      // growing with each retry; depth: half the layers, then half as many again each
+      // time (behind a blunt base the crossings lie low in the layers, and four layers
+      // less per retry never reached them).
       std::vector<ForcedStop> stops;
       for (const Vector3& crossing : crossings) {
         const bool covered = std::any_of(stops.begin(), stops.end(), [&](const ForcedStop& other) {
@@ -247,7 +249,7 @@ GenerateResult generate_from_surface(const SurfaceMesh& surface, const GenerateO
         ForcedStop stop;
         stop.centre = crossing;
         stop.radius = (attempt + 1) * (3.0 * layers.report.total_thickness + 2.0 * nearest_node);
-        stop.layer = std::max(1, march_options.spacing.layer_count - 4 * (attempt + 1));
+        stop.layer = std::max(1, march_options.spacing.layer_count >> (attempt + 1));
         stops.push_back(stop);
       }
       march_options.forced_stops.insert(march_options.forced_stops.end(), stops.begin(), stops.end());

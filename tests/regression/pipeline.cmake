@@ -78,22 +78,28 @@ add_test(NAME pipeline_check_mesh_onera_m6_pitched
 set_tests_properties(pipeline_check_mesh_onera_m6_pitched PROPERTIES LABELS "regression;heavy"
                      FIXTURES_REQUIRED onera_m6_pitched PASS_REGULAR_EXPRESSION "\nVALID")
 
-# A hull that intersects itself is mended by lowering the layers round the crossing.
+# A hull that intersects itself is mended by lowering the layers round the crossing. A
+# blunt base with a wake: the base's lines and the sheet's first lines cross in the
+# concave corner behind the base at the root and by the tip, low in the layers. Stopping
+# four layers lower per retry (24, 20, 16 of 28) never cleared it; halving them (14,
+# then 7) does, on the second retry. (The cranked wing this test used before, with a
+# crossing behind its tip's trailing edge, meshes without a retry since the march's
+# lines see every wall face they start from.)
 add_test(NAME pipeline_hull_crossing_lowers_the_layers
-         COMMAND mixmesh-cli generate ${CMAKE_CURRENT_LIST_DIR}/pipeline/hull_crossing_wing.toml
+         COMMAND mixmesh-cli generate ${CMAKE_CURRENT_LIST_DIR}/pipeline/base_and_wake_wing.toml
                  --output-dir ${pipeline_folder}/hull_crossing
                  --report ${pipeline_folder}/hull_crossing/report.toml)
 set_tests_properties(pipeline_hull_crossing_lowers_the_layers PROPERTIES LABELS regression
                      FIXTURES_SETUP hull_crossing_mesh
-                     PASS_REGULAR_EXPRESSION "the hull intersects itself near [^\n]* \\(retry 1 of 3\\).*points [0-9]+  surface elements")
+                     PASS_REGULAR_EXPRESSION "the hull intersects itself near [^\n]* stop by layer 14 \\(retry 1 of 3\\).*points [0-9]+  surface elements")
 add_test(NAME pipeline_check_mesh_hull_crossing
-         COMMAND ${MIXMESH_PYTHON} ${MIXMESH_CHECK_MESH} ${pipeline_folder}/hull_crossing/hull_crossing_wing.vtu -q)
+         COMMAND ${MIXMESH_PYTHON} ${MIXMESH_CHECK_MESH} ${pipeline_folder}/hull_crossing/base_and_wake_wing.vtu -q)
 set_tests_properties(pipeline_check_mesh_hull_crossing PROPERTIES LABELS regression
                      FIXTURES_REQUIRED hull_crossing_mesh PASS_REGULAR_EXPRESSION "\nVALID")
 add_test(NAME pipeline_report_counts_hull_retries
          COMMAND ${CMAKE_COMMAND} -E cat ${pipeline_folder}/hull_crossing/report.toml)
 set_tests_properties(pipeline_report_counts_hull_retries PROPERTIES LABELS regression
-                     FIXTURES_REQUIRED hull_crossing_mesh PASS_REGULAR_EXPRESSION "\nhull_retries = 1\n")
+                     FIXTURES_REQUIRED hull_crossing_mesh PASS_REGULAR_EXPRESSION "\nhull_retries = 2\n")
 
 # The default ONERA M6 mesh (cases/onera_m6.toml, anisotropic far field) keeps its
 # slivers down: the largest dihedral angle under 178.5 deg and under 0.5 % of the
@@ -112,3 +118,4 @@ add_test(NAME pipeline_onera_m6_default_slivers
                  ${pipeline_folder}/onera_m6_default/report.toml)
 set_tests_properties(pipeline_onera_m6_default_slivers PROPERTIES LABELS "regression;heavy"
                      FIXTURES_REQUIRED onera_m6_default)
+
