@@ -41,6 +41,9 @@ void add_generate_command(CLI::App& application) {
     GenerateOptions options = load_generate_options(arguments->config, arguments->settings);
     if (!arguments->output_folder.empty()) options.output.folder = arguments->output_folder;
     options.farfield.dump_directory = arguments->dump_stages;
+    // Like --output-dir, the folder is made when missing (the dump is written late, after
+    // the march and the interface have run).
+    if (!arguments->dump_stages.empty()) std::filesystem::create_directories(arguments->dump_stages);
     const Log log(&std::cout, arguments->quiet ? Log::Level::quiet : Log::Level::normal);
     const GenerateResult result = generate(options, log);
     if (!result.validity.valid()) {

@@ -119,3 +119,11 @@ add_test(NAME pipeline_onera_m6_default_slivers
 set_tests_properties(pipeline_onera_m6_default_slivers PROPERTIES LABELS "regression;heavy"
                      FIXTURES_REQUIRED onera_m6_default)
 
+
+# --dump-stages makes its folder when it is missing (it failed late, after the march,
+# with "cannot open for writing").
+add_test(NAME pipeline_dump_stages_makes_its_folder
+         COMMAND ${CMAKE_COMMAND} -DPROGRAM=$<TARGET_FILE:mixmesh-cli>
+                 -DCONFIG=${CMAKE_CURRENT_LIST_DIR}/pipeline/base_and_wake_wing.toml
+                 -DFOLDER=${pipeline_folder}/dump_stages -P ${CMAKE_CURRENT_LIST_DIR}/pipeline/dump_stages.cmake)
+set_tests_properties(pipeline_dump_stages_makes_its_folder PROPERTIES LABELS regression)
