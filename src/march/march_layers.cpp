@@ -492,7 +492,8 @@ BoundaryLayer march_layers(const SurfaceMesh& surface, const MarchOptions& optio
     }
     for (std::size_t c = 0; c < column_count; ++c)
       if (on_wall[c] && !junction_line[c]) normal[c] = off_the_sheet(normal[c], sheet_normal[c]);
-    see_every_wall_face(front, current, face_active, on_wall, junction_line, normal);
+    // (Not for the plain-normal baseline, which stays plain extrusion for the comparison.)
+    if (smoothed) see_every_wall_face(front, current, face_active, on_wall, junction_line, normal);
 
     // Predictor: the layer normal, blended with the previous marching direction.
     const double memory = smoothed && layer > 0 ? options.direction_memory : 0.0;
