@@ -133,6 +133,7 @@ GenerateResult generate_from_surface(const SurfaceMesh& surface, const GenerateO
   FarFieldInput farfield_input;
   std::optional<FarFieldResult> farfield_result;
   const std::size_t first_stage = report.stages.size();
+  std::vector<Vector3> previous_crossings;
   for (int attempt = 0; !farfield_result; ++attempt) {
     report.hull_retries = attempt;
     // A retry's stage timings replace those of the attempt before.
@@ -203,7 +204,7 @@ GenerateResult generate_from_surface(const SurfaceMesh& surface, const GenerateO
     // includes the wake.
     if (farfield_options.reference_chord <= 0.0 && options.surface.wing)
       farfield_options.reference_chord = options.surface.wing->stations.front().chord;
-    std::vector<Vector3> crossings;
+    std::vector<Vector3> crossings;  // (previous_crossings: those of the last retry)
     farfield_result = run_stage("farfield", report, [&]() -> std::optional<FarFieldResult> {
       try {
         return farfield(farfield_input, farfield_options, log);
@@ -214,9 +215,18 @@ GenerateResult generate_from_surface(const SurfaceMesh& surface, const GenerateO
         }
         throw Error(error.what() + layer_hint(layers.report));
       } catch (const Error& error) {
+        const std::string message = error.what();
+        // TetGen can fail outright on a hull the retries are still mending (a base's
+        // stacks stopped by half the layers, random wing 22 of seed 11): the same places
+        // are lowered further, as if it had found the crossings there again.
+        if (message.find("TetGen crashed") != std::string::npos && !previous_crossings.empty() &&
+            attempt < options.hull_retries) {
+          log.warning(message + "; lowering the layers further where the last retry did");
+          crossings = previous_crossings;
+          return std::nullopt;
+        }
         // A hull the far field cannot fill comes from the layers: say where they stopped
         // and what to change, not only what TetGen found.
-        const std::string message = error.what();
         if (message.find("intersect") == std::string::npos &&
             message.find("hull edge") == std::string::npos &&
             message.find("hull is open") == std::string::npos)
@@ -259,6 +269,7 @@ GenerateResult generate_from_surface(const SurfaceMesh& surface, const GenerateO
                   (stops.size() == 1 ? " place" : " places") + " stop by layer " +
                   std::to_string(stops.front().layer) + " (retry " + std::to_string(attempt + 1) + " of " +
                   std::to_string(options.hull_retries) + ")");
+      previous_crossings = crossings;
     }
   }
   log.info("farfield: " + seconds_text(report.stages.back().seconds) + ", " +
