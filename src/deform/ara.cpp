@@ -395,7 +395,21 @@ std::vector<Vector3> AraMethod::move(const MixedMesh& mesh, const BoundaryMotion
     for (std::size_t slot = 0; slot < nodes.size(); ++slot)
       result[static_cast<std::size_t>(nodes[slot])] = updated[slot];
     detail::project_sliding(boundary, points, result);
-    inverted = check();
+    // Only the cells of the moved nodes change: checking those alone instead of every
+    // cell gives the same count (a full check of the M6's 701 k cells took 0.1–0.2 s a pass).
+    std::vector<Index> changed;
+    for (Index node : nodes)
+      for (std::size_t slot = dual.point_cell_offsets[static_cast<std::size_t>(node)];
+           slot < dual.point_cell_offsets[static_cast<std::size_t>(node) + 1]; ++slot)
+        changed.push_back(dual.point_cells[slot]);
+    std::sort(changed.begin(), changed.end());
+    changed.erase(std::unique(changed.begin(), changed.end()), changed.end());
+    detail::parallel_items(changed.size(), [&](std::size_t slot) {
+      const std::size_t cell = static_cast<std::size_t>(changed[slot]);
+      deformed_volume[cell] = detail::cell_measure(dual, cell, result);
+      invalid[cell] = !detail::cell_valid(dual, cell, result);
+    });
+    inverted = static_cast<std::size_t>(std::count(invalid.begin(), invalid.end(), 1));
     report_.repair_passes = pass;
     if (inverted < best_inverted) {
       best = result;
@@ -414,7 +428,7 @@ std::vector<Vector3> AraMethod::move(const MixedMesh& mesh, const BoundaryMotion
           << smoothed.iterations << " iterations (r.m.s. " << smoothed.residual << ") "
           << report_.smoothing_seconds << " s, inverted after interpolation "
           << report_.inverted_after_interpolation << ", after " << report_.repair_passes << " repair passes "
-          << inverted << "; setup "
+          << report_.inverted_after_repair << " (kept the fewest); setup "
           << (report_.geometry_cached      ? "(cached) "
               : report_.geometry_from_file ? "(from the cache file) "
                                            : "")

@@ -85,8 +85,11 @@ DeformResult step_from(const MixedMesh& mesh, const MixedMesh& reference, const 
   if (untangled.inverted_before > 0)
     log.detail("untangle: " + std::to_string(untangled.inverted_before) +
                " inverted cells after the layer transport, " + std::to_string(untangled.inverted_after) +
-               " after " + std::to_string(untangled.rounds) + " rounds (" +
-               std::to_string(untangled.moved_nodes) + " nodes moved)");
+               " after " + std::to_string(untangled.rounds) + " rounds of affine maps" +
+               (untangled.optimise_before > 0
+                    ? " and the optimisation of " + std::to_string(untangled.optimise_before)
+                    : std::string()) +
+               " (" + std::to_string(untangled.moved_nodes) + " nodes moved)");
 
   DeformResult result;
   result.mesh = mesh;

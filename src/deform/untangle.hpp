@@ -15,6 +15,15 @@
 // so a node inside a rigidly turned region does not move). A region's move is kept only
 // when fewer of the cells it touches are inverted afterwards; nodes the motion prescribes
 // never move, sliding nodes stay in their plane.
+//
+// An affine map of the neighbours is not enough where the neighbours' motion is not
+// affine over the cell: the flat cells above and below the ONERA M6's wake, 0.2–0.9 m
+// long and a fraction of a millimetre thick. The cells still inverted then go to a local
+// optimisation (untangle_optimise.cpp): the free nodes of the inverted cells, and up to
+// two rings round them, move one at a time down the gradient of Knupp's untangling
+// function of their cells (P. M. Knupp, Hexahedral and tetrahedral mesh untangling,
+// Engineering with Computers 17, 2001), a node keeping its move only when no more of
+// its cells are inverted.
 #pragma once
 
 #include <cstddef>
@@ -29,8 +38,18 @@ struct UntangleReport {
   std::size_t inverted_before = 0;
   std::size_t inverted_after = 0;
   int rounds = 0;
+  std::size_t optimise_before = 0;  // inverted cells handed to the optimisation
   std::size_t moved_nodes = 0;
 };
+
+// The nodes joined to `node` by an edge of one of its cells, sorted.
+void edge_neighbours(const DualMesh& dual, std::size_t node, std::vector<Index>& out);
+
+// The optimisation stage: `invalid` flags the inverted cells and is kept up to date;
+// nodes that move are flagged in `ever_moved`. Returns the inverted cells left.
+std::size_t optimise_inverted(const DualMesh& dual, const BoundaryMotion& boundary,
+                              const std::vector<Vector3>& original, std::vector<Vector3>& moved,
+                              std::vector<char>& invalid, std::vector<char>& ever_moved);
 
 UntangleReport untangle(const DualMesh& dual, const BoundaryMotion& boundary,
                         const std::vector<Vector3>& original, std::vector<Vector3>& moved);

@@ -50,22 +50,43 @@ add_test(NAME deform_naca0012_translation_only_fails
 set_tests_properties(deform_naca0012_translation_only_fails PROPERTIES LABELS regression
   PASS_REGULAR_EXPRESSION "step 2: [0-9]+ cells stay inverted after repair; (triangle|quad) [0-9]+ at \\(")
 
-# The motions of issue #15 that deform the default ONERA M6 mesh with its wake valid in
-# one step (cases/pipeline/onera_m6_motions.toml: IDW pitch +-15 degrees and a plunge of
-# half the root chord), each deformed mesh judged by the
-# independent checker. Heavy: about a minute and a half (docs/deform.md, "Motions of issue #15").
+# The motions of issue #15 on the default ONERA M6 mesh with its wake, each in one step
+# (cases/pipeline/onera_m6_motions.toml: IDW and ARA, pitch +-15 degrees and a plunge of
+# half the root chord; then the bending mode of scripts/wing-motions.py on the generated
+# mesh with both methods), each deformed mesh judged by the independent checker. Heavy:
+# about three minutes (docs/deform.md, "Motions of issue #15").
 set(m6_motions_output ${CMAKE_CURRENT_BINARY_DIR}/deform_onera_m6_motions)
 add_test(NAME deform_onera_m6_motions
          COMMAND mixmesh-cli generate ${PROJECT_SOURCE_DIR}/cases/pipeline/onera_m6_motions.toml
                  --output-dir ${m6_motions_output})
 set_tests_properties(deform_onera_m6_motions PROPERTIES LABELS "regression;heavy"
                      FIXTURES_SETUP deform_onera_m6_motions
-                     PASS_REGULAR_EXPRESSION "wrote [^\n]*onera_m6_motions_plunge.vtu"
+                     PASS_REGULAR_EXPRESSION "wrote [^\n]*onera_m6_motions_plunge_ara.vtu"
                      FAIL_REGULAR_EXPRESSION "mixmesh: error|INVALID")
-foreach(motion pitch_up pitch_down plunge)
+foreach(motion pitch_up pitch_down plunge pitch_up_ara pitch_down_ara plunge_ara)
   add_test(NAME deform_onera_m6_motions_check_${motion}
            COMMAND ${MIXMESH_PYTHON} ${MIXMESH_CHECK_MESH} ${m6_motions_output}/onera_m6_motions_${motion}.vtu
                    --no-foam -q)
   set_tests_properties(deform_onera_m6_motions_check_${motion} PROPERTIES LABELS "regression;heavy"
                        FIXTURES_REQUIRED deform_onera_m6_motions PASS_REGULAR_EXPRESSION "\nVALID")
+endforeach()
+add_test(NAME deform_onera_m6_motions_bend_files
+         COMMAND ${MIXMESH_PYTHON} ${PROJECT_SOURCE_DIR}/scripts/wing-motions.py
+                 ${m6_motions_output}/onera_m6_motions.vtu ${m6_motions_output}/motions 0.2 0.8059 1.1963)
+set_tests_properties(deform_onera_m6_motions_bend_files PROPERTIES LABELS "regression;heavy"
+                     FIXTURES_REQUIRED deform_onera_m6_motions FIXTURES_SETUP deform_onera_m6_bend_files)
+foreach(method ara idw)
+  add_test(NAME deform_onera_m6_motions_bend_${method}
+           COMMAND mixmesh-cli deform ${m6_motions_output}/onera_m6_motions.vtu
+                   --motion ${m6_motions_output}/motions/bend_${method}.toml
+                   -o ${m6_motions_output}/onera_m6_motions_bend_${method}.vtu)
+  set_tests_properties(deform_onera_m6_motions_bend_${method} PROPERTIES LABELS "regression;heavy"
+                       FIXTURES_REQUIRED deform_onera_m6_bend_files
+                       FIXTURES_SETUP deform_onera_m6_bend_${method}
+                       FAIL_REGULAR_EXPRESSION "mixmesh: error|INVALID")
+  add_test(NAME deform_onera_m6_motions_check_bend_${method}
+           COMMAND ${MIXMESH_PYTHON} ${MIXMESH_CHECK_MESH}
+                   ${m6_motions_output}/onera_m6_motions_bend_${method}.vtu --no-foam -q)
+  set_tests_properties(deform_onera_m6_motions_check_bend_${method} PROPERTIES LABELS "regression;heavy"
+                       FIXTURES_REQUIRED deform_onera_m6_bend_${method} PASS_REGULAR_EXPRESSION "\nVALID")
 endforeach()

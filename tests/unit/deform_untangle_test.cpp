@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "mixmesh/deform/deform.hpp"
+#include "mixmesh/mesh/cell_geometry.hpp"
 
 namespace mixmesh::deform {
 namespace {
@@ -154,6 +155,63 @@ TEST(DeformUntangle, AValidMeshIsLeftAsTheMethodGaveIt) {
       (result.mesh.points[node] - pose.apply(mesh.points[node]) - Vector3(0.25 / cells_per_side, 0.0, 0.0))
           .norm(),
       1e-12);
+}
+
+// The star of one node: an octahedron of corners (±1, 0, 0), (0, ±1, 0), (0, 0, ±1) cut
+// into eight tetrahedra about the centre node 6, its faces the wall.
+MixedMesh octahedron_star() {
+  MixedMesh mesh;
+  mesh.marker_names = {"wall"};
+  mesh.points = {Vector3(1, 0, 0), Vector3(-1, 0, 0), Vector3(0, 1, 0), Vector3(0, -1, 0),
+                 Vector3(0, 0, 1), Vector3(0, 0, -1), Vector3(0, 0, 0)};
+  for (Index along_x : {0, 1})
+    for (Index along_y : {2, 3})
+      for (Index along_z : {4, 5}) {
+        std::array<Index, 4> tetrahedron = {along_x, along_y, along_z, 6};
+        if (signed_volume(CellType::tetrahedron, mesh.points, tetrahedron.data()) < 0.0)
+          std::swap(tetrahedron[0], tetrahedron[1]);
+        mesh.add_cell(CellType::tetrahedron, tetrahedron.data());
+        // The face seen from outside: the reverse of the cell's face opposite the centre.
+        std::array<Index, 3> face = {tetrahedron[0], tetrahedron[2], tetrahedron[1]};
+        mesh.add_face(FaceType::triangle, face.data(), 0);
+      }
+  return mesh;
+}
+
+TEST(DeformUntangle, ANodeWhoseNeighboursDoNotMoveAffinelyGoesWhereItsCellsAreValid) {
+  // The corner (1, 0, 0) moves to (−0.3, 0, 0), past the centre: the four cells on it are
+  // valid only for a centre with x < −0.3. The affine map of the six corners' motion puts
+  // the centre at x = −1.3 / 6 ≈ −0.22, still inverted; the optimisation finds the room
+  // between x = −1 and −0.3.
+  const MixedMesh mesh = octahedron_star();
+  Body body;
+  body.name = "star";
+  body.markers = {"wall"};
+  body.law = MotionLaw::mode;
+  for (Index corner = 0; corner < 6; ++corner) {
+    body.field.nodes.push_back(corner);
+    body.field.values.push_back(corner == 0 ? Vector3(-1.3, 0.0, 0.0) : Vector3::Zero());
+  }
+  Motion motion;
+  motion.bodies = {body};
+  class Still : public DeformationMethod {
+   public:
+    std::string name() const override { return "still"; }
+    std::vector<Vector3> move(const MixedMesh& mesh, const BoundaryMotion&, const Log&) override {
+      return mesh.points;
+    }
+  } method;
+  std::ostringstream report;
+  const Log log(&report, Log::Level::verbose);
+  const DeformResult result = deform_step(mesh, mesh, motion, 1, method, log);
+  EXPECT_NE(report.str().find("untangle: 4 inverted cells after the layer transport, 0 after"),
+            std::string::npos)
+      << report.str();
+  EXPECT_EQ(result.invalid_count, 0u);
+  EXPECT_TRUE(result.valid);
+  const Vector3& centre = result.mesh.points[6];
+  EXPECT_LT(centre.x(), -0.3);
+  EXPECT_GT(centre.x(), -1.0);
 }
 
 }  // namespace
