@@ -272,11 +272,12 @@ FarFieldResult farfield(const FarFieldInput& input, const FarFieldOptions& optio
       forward = backward = Eigen::Matrix3d::Identity();
       tetgen.points = points;
       tetgen.holes = holes;
-      tetgen.time_limit_seconds = 0;
+      tetgen.time_limit_seconds = options.tetgen_time_limit;
       watch = Stopwatch();
       tetrahedra = farfield_parts::run_tetgen(tetgen);
     }
   } else {
+    tetgen.time_limit_seconds = options.tetgen_time_limit;
     tetrahedra = farfield_parts::run_tetgen(tetgen);
   }
   log.info("farfield: quality pass " + seconds_text(watch.seconds()) + ", " +
@@ -343,6 +344,7 @@ FarFieldResult farfield(const FarFieldInput& input, const FarFieldOptions& optio
     exact.points.insert(exact.points.end(), volume_points.begin(), volume_points.end());
     exact.holes = holes;
     exact.quality = false;
+    exact.time_limit_seconds = options.tetgen_time_limit;
     // TetGen 1.5 can fail an assertion on near-degenerate input (flip41 on the points of
     // a wing whose layers stopped round a crossing); with the anisotropic sizing the
     // quality pass's tetrahedra are a sound mesh of the same boundary in the original

@@ -217,10 +217,12 @@ GenerateResult generate_from_surface(const SurfaceMesh& surface, const GenerateO
       } catch (const Error& error) {
         const std::string message = error.what();
         // TetGen can fail outright on a hull the retries are still mending (a base's
-        // stacks stopped by half the layers, random wing 22 of seed 11): the same places
-        // are lowered further, as if it had found the crossings there again.
-        if (message.find("TetGen crashed") != std::string::npos && !previous_crossings.empty() &&
-            attempt < options.hull_retries) {
+        // stacks stopped by half the layers: an abort on random wing 22 of seed 11, a
+        // quality pass that never ended on wing 20 of seed 14): the same places are
+        // lowered further, as if it had found the crossings there again.
+        const bool tetgen_failed = message.find("TetGen crashed") != std::string::npos ||
+                                   message.find("did not finish within") != std::string::npos;
+        if (tetgen_failed && !previous_crossings.empty() && attempt < options.hull_retries) {
           log.warning(message + "; lowering the layers further where the last retry did");
           crossings = previous_crossings;
           return std::nullopt;

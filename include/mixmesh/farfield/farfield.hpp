@@ -95,6 +95,11 @@ struct FarFieldOptions {
   // refinement can cycle in the mapped space) or when TetGen fails there, and run
   // again without the map (a warning says so). 0: no limit.
   unsigned precondition_time_limit = 600;
+  // Every other TetGen pass is stopped after this many seconds: its refinement can cycle
+  // without end on a hull with thin features (a random wing's stacks lowered round
+  // crossings: the quality pass ran for over 50 minutes), and a design loop must not
+  // wait for ever. The M6's passes take about 10 s. 0: no limit.
+  unsigned tetgen_time_limit = 900;
   // When set, the closed boundary is written there as legacy VTK after each transform:
   // boundary.vtk (as built), sheared.vtk (S⁻¹ P) and preconditioned.vtk (F P).
   std::filesystem::path dump_directory;
