@@ -35,6 +35,32 @@ void edge_neighbours(const DualMesh& dual, std::size_t node, std::vector<Index>&
   out.erase(std::unique(out.begin(), out.end()), out.end());
 }
 
+std::vector<Index> inverted_region(const DualMesh& dual, const std::vector<char>& invalid, int rings) {
+  std::vector<char> taken(dual.point_cell_offsets.size() - 1, 0);
+  std::vector<Index> region, neighbours;
+  for (std::size_t cell = 0; cell < invalid.size(); ++cell) {
+    if (!invalid[cell]) continue;
+    for (int local = 0; local < dual.cell_size(cell); ++local) {
+      const Index node = dual.nodes(cell)[local];
+      if (taken[static_cast<std::size_t>(node)]) continue;
+      taken[static_cast<std::size_t>(node)] = 1;
+      region.push_back(node);
+    }
+  }
+  for (int step = 0; step < rings; ++step) {
+    const std::size_t size = region.size();
+    for (std::size_t slot = 0; slot < size; ++slot) {
+      edge_neighbours(dual, static_cast<std::size_t>(region[slot]), neighbours);
+      for (Index other : neighbours) {
+        if (taken[static_cast<std::size_t>(other)]) continue;
+        taken[static_cast<std::size_t>(other)] = 1;
+        region.push_back(other);
+      }
+    }
+  }
+  return region;
+}
+
 namespace {
 
 // Rings of nodes round the inverted cells tried before giving up, and the sweeps of the
@@ -99,36 +125,12 @@ UntangleReport untangle(const DualMesh& dual, const BoundaryMotion& boundary,
   if (report.inverted_before == 0) return report;
 
   const std::size_t point_count = original.size();
-  std::vector<int> stamp(point_count, 0);  // the try that put the node in the region
   std::vector<char> ever_moved(point_count, 0);
-  std::vector<Index> neighbours;
-  int attempt = 0;
   for (int ring = 0; ring <= largest_ring && report.inverted_after > 0; ++ring) {
     for (int repeat = 0; repeat < tries_per_ring && report.inverted_after > 0; ++repeat) {
-      ++attempt;
       ++report.rounds;
       // The region: the nodes of the inverted cells and `ring` rings round them.
-      std::vector<Index> region;
-      for (std::size_t cell = 0; cell < cells; ++cell) {
-        if (!invalid[cell]) continue;
-        for (int local = 0; local < dual.cell_size(cell); ++local) {
-          const Index node = dual.nodes(cell)[local];
-          if (stamp[static_cast<std::size_t>(node)] == attempt) continue;
-          stamp[static_cast<std::size_t>(node)] = attempt;
-          region.push_back(node);
-        }
-      }
-      for (int step = 0; step < ring; ++step) {
-        const std::size_t size = region.size();
-        for (std::size_t slot = 0; slot < size; ++slot) {
-          edge_neighbours(dual, static_cast<std::size_t>(region[slot]), neighbours);
-          for (Index other : neighbours) {
-            if (stamp[static_cast<std::size_t>(other)] == attempt) continue;
-            stamp[static_cast<std::size_t>(other)] = attempt;
-            region.push_back(other);
-          }
-        }
-      }
+      std::vector<Index> region = inverted_region(dual, invalid, ring);
       region.erase(std::remove_if(region.begin(), region.end(),
                                   [&](Index node) {
                                     return boundary.roles[static_cast<std::size_t>(node)] ==

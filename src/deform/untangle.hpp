@@ -45,6 +45,10 @@ struct UntangleReport {
 // The nodes joined to `node` by an edge of one of its cells, sorted.
 void edge_neighbours(const DualMesh& dual, std::size_t node, std::vector<Index>& out);
 
+// The nodes of the cells flagged in `invalid` and `rings` rings of edge neighbours round
+// them, each once.
+std::vector<Index> inverted_region(const DualMesh& dual, const std::vector<char>& invalid, int rings);
+
 // The optimisation stage: `invalid` flags the inverted cells and is kept up to date;
 // nodes that move are flagged in `ever_moved`. Returns the inverted cells left.
 std::size_t optimise_inverted(const DualMesh& dual, const BoundaryMotion& boundary,

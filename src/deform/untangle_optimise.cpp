@@ -16,7 +16,7 @@ namespace {
 // 2(β − r) for an inverted measure and near zero once r is well above β. r is a measure
 // of the deformed cell over the same measure of the undeformed one, so a flat cell 1 µm
 // thick counts as much as a cube: each only has to keep a fraction β of its own shape.
-constexpr double target_ratio = 0.1;     // β
+constexpr double target_ratio = 0.1;      // β
 constexpr double smoothing_width = 0.01;  // δ
 constexpr int largest_ring = 2;
 constexpr int sweeps = 8;
@@ -26,10 +26,14 @@ constexpr int halvings = 40;
 // d V6 / d vertex of tetrahedron_volume6(a, b, c, d), vertex 0..3.
 Vector3 volume_gradient(const Vector3& a, const Vector3& b, const Vector3& c, const Vector3& d, int vertex) {
   switch (vertex) {
-    case 1: return (c - a).cross(d - a);
-    case 2: return (d - a).cross(b - a);
-    case 3: return (b - a).cross(c - a);
-    default: return -((c - a).cross(d - a) + (d - a).cross(b - a) + (b - a).cross(c - a));
+    case 1:
+      return (c - a).cross(d - a);
+    case 2:
+      return (d - a).cross(b - a);
+    case 3:
+      return (b - a).cross(c - a);
+    default:
+      return -((c - a).cross(d - a) + (d - a).cross(b - a) + (b - a).cross(c - a));
   }
 }
 
@@ -90,7 +94,8 @@ void cell_measures(const DualMesh& dual, std::size_t cell, Index node, const std
     const std::array<Vector3, 3> partial = {second.cross(third), third.cross(first), first.cross(second)};
     Vector3 gradient = -is_node(local.node) * (partial[0] + partial[1] + partial[2]);
     for (int side = 0; side < 3; ++side)
-      gradient += is_node(local.neighbours[static_cast<std::size_t>(side)]) * partial[static_cast<std::size_t>(side)];
+      gradient +=
+          is_node(local.neighbours[static_cast<std::size_t>(side)]) * partial[static_cast<std::size_t>(side)];
     gradients->push_back(gradient);
   }
 }
@@ -178,32 +183,9 @@ std::size_t optimise_inverted(const DualMesh& dual, const BoundaryMotion& bounda
   std::size_t inverted = static_cast<std::size_t>(std::count(invalid.begin(), invalid.end(), 1));
   if (dual.planar) return inverted;  // the measures above are those of volume cells
   NodeObjective objective{dual, original, {}, {}, {}, 0.0};
-  std::vector<int> stamp(original.size(), 0);
   std::vector<Index> neighbours;
-  int attempt = 0;
   for (int ring = 0; ring <= largest_ring && inverted > 0; ++ring) {
-    ++attempt;
-    std::vector<Index> region;
-    for (std::size_t cell = 0; cell < dual.cell_count(); ++cell) {
-      if (!invalid[cell]) continue;
-      for (int local = 0; local < dual.cell_size(cell); ++local) {
-        const Index node = dual.nodes(cell)[local];
-        if (stamp[static_cast<std::size_t>(node)] == attempt) continue;
-        stamp[static_cast<std::size_t>(node)] = attempt;
-        region.push_back(node);
-      }
-    }
-    for (int step = 0; step < ring; ++step) {
-      const std::size_t size = region.size();
-      for (std::size_t slot = 0; slot < size; ++slot) {
-        edge_neighbours(dual, static_cast<std::size_t>(region[slot]), neighbours);
-        for (Index other : neighbours)
-          if (stamp[static_cast<std::size_t>(other)] != attempt) {
-            stamp[static_cast<std::size_t>(other)] = attempt;
-            region.push_back(other);
-          }
-      }
-    }
+    const std::vector<Index> region = inverted_region(dual, invalid, ring);
     // Gauss–Seidel over the region's free nodes: each node moves against the gradient of
     // its cells' untangling function, and keeps the move only when no more of its cells
     // are inverted than before, so the count never grows.
@@ -220,7 +202,8 @@ std::size_t optimise_inverted(const DualMesh& dual, const BoundaryMotion& bounda
           continue;
         }
         ever_moved[node] = 1;
-        for (std::size_t slot = dual.point_cell_offsets[node]; slot < dual.point_cell_offsets[node + 1]; ++slot) {
+        for (std::size_t slot = dual.point_cell_offsets[node]; slot < dual.point_cell_offsets[node + 1];
+             ++slot) {
           const std::size_t cell = static_cast<std::size_t>(dual.point_cells[slot]);
           const char now = !cell_valid(dual, cell, moved);
           inverted = inverted - static_cast<std::size_t>(invalid[cell]) + static_cast<std::size_t>(now);
