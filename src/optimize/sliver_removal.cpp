@@ -84,6 +84,11 @@ class SliverRemoval {
       split_an_edge(t);
       collapse_a_point(t);
       if (options_.smooth_points) move_a_point(t);
+      if (!best_ && options_.insert_points && !insertion_failed(t)) {
+        insert_a_point(t);
+        // Kept from later passes: its neighbours seldom change enough to let it in.
+        if (!best_) insertion_failed_[static_cast<std::size_t>(t)] = 1;
+      }
       if (!best_) continue;
       apply(*best_, report);
       ++done;
@@ -92,7 +97,7 @@ class SliverRemoval {
   }
 
  private:
-  enum class Operation { edge_removal, face_flip, edge_split, point_collapse, point_move };
+  enum class Operation { edge_removal, face_flip, edge_split, point_collapse, point_move, point_insertion };
 
   // A local change: tetrahedra that go, tetrahedra that replace them (node -1: the
   // new point of a split), or a point that moves, and the quality of both sets.
@@ -145,6 +150,9 @@ class SliverRemoval {
         break;
       case Operation::point_move:
         ++report.smoothed_points;
+        break;
+      case Operation::point_insertion:
+        ++report.point_insertions;
         break;
     }
   }
@@ -424,6 +432,161 @@ class SliverRemoval {
     }
   }
 
+  // Point insertion: a sliver whose four points lie on faces the pass cannot cross (two
+  // hull triangles of a shallow concave fold, a cap's side and its neighbour's) has no
+  // flip out; a new point above it does. Trial points: the sliver's circumcentre and
+  // points over each of its crossable faces. Each takes the cavity of the tetrahedra
+  // whose circumsphere holds it (Bowyer-Watson), grown from the tetrahedron holding the
+  // point across faces two tetrahedra share, and fills it with the cone from the point.
+  void insert_a_point(int t) {
+    const Tetrahedron nodes = complex_.nodes(t);
+    double longest = 0.0;
+    Vector3 centroid = Vector3::Zero();
+    for (int k = 0; k < 4; ++k) {
+      centroid += 0.25 * point(nodes[static_cast<std::size_t>(k)]);
+      for (int l = k + 1; l < 4; ++l)
+        longest = std::max(
+            longest,
+            (point(nodes[static_cast<std::size_t>(k)]) - point(nodes[static_cast<std::size_t>(l)])).norm());
+    }
+    trials_.clear();
+    if (const auto centre = circumcentre(nodes); centre && (*centre - centroid).norm() < longest)
+      trials_.push_back(*centre);
+    for (int skip = 0; skip < 4; ++skip) {
+      std::array<Index, 3> face{};
+      for (int k = 0, n = 0; k < 4; ++k)
+        if (k != skip) face[static_cast<std::size_t>(n++)] = nodes[static_cast<std::size_t>(k)];
+      if (complex_.neighbour(t, face[0], face[1], face[2]) < 0) continue;
+      const Vector3 middle = (point(face[0]) + point(face[1]) + point(face[2])) / 3.0;
+      Vector3 normal = (point(face[1]) - point(face[0])).cross(point(face[2]) - point(face[0]));
+      if (!(normal.norm() > 0.0)) continue;
+      normal.normalize();
+      if (normal.dot(point(nodes[static_cast<std::size_t>(skip)]) - middle) > 0.0) normal = -normal;
+      for (double height : {0.1, 0.25, 0.5}) trials_.push_back(middle + height * longest * normal);
+    }
+    for (const Vector3& trial : trials_) try_insertion(t, trial);
+  }
+
+  std::optional<Vector3> circumcentre(const Tetrahedron& nodes) {
+    const Vector3& a = point(nodes[0]);
+    Eigen::Matrix3d rows;
+    Vector3 right;
+    for (int k = 1; k < 4; ++k) {
+      const Vector3 edge = point(nodes[static_cast<std::size_t>(k)]) - a;
+      rows.row(k - 1) = edge.transpose();
+      right(k - 1) = 0.5 * edge.squaredNorm();
+    }
+    const double determinant = rows.determinant();
+    if (!(std::abs(determinant) > 0.0)) return std::nullopt;
+    const Vector3 centre = a + rows.inverse() * right;
+    if (!centre.allFinite()) return std::nullopt;
+    return centre;
+  }
+
+  // True when x lies strictly inside the circumsphere of tetrahedron t.
+  bool in_circumsphere(int t, const Vector3& x) {
+    const Tetrahedron& nodes = complex_.nodes(t);
+    const auto centre = circumcentre(nodes);
+    if (!centre) return false;
+    return (x - *centre).squaredNorm() < (point(nodes[0]) - *centre).squaredNorm() * (1.0 - 1e-9);
+  }
+
+  // The tetrahedron holding x, walking from t across faces two tetrahedra share; -1
+  // when the walk leaves the tetrahedra or does not arrive.
+  int locate(int t, const Vector3& x) {
+    for (int step = 0; step < 64; ++step) {
+      const Tetrahedron& nodes = complex_.nodes(t);
+      int next = -2;
+      for (int skip = 0; skip < 4 && next == -2; ++skip) {
+        std::array<Index, 3> face{};
+        for (int k = 0, n = 0; k < 4; ++k)
+          if (k != skip) face[static_cast<std::size_t>(n++)] = nodes[static_cast<std::size_t>(k)];
+        const double inside = tetrahedron_volume6(point(face[0]), point(face[1]), point(face[2]),
+                                                  point(nodes[static_cast<std::size_t>(skip)]));
+        const double here = tetrahedron_volume6(point(face[0]), point(face[1]), point(face[2]), x);
+        if (inside * here < 0.0) next = complex_.neighbour(t, face[0], face[1], face[2]);
+      }
+      if (next == -2) return t;
+      if (next < 0) return -1;
+      t = next;
+    }
+    return -1;
+  }
+
+  void try_insertion(int t, const Vector3& x) {
+    const int start = locate(t, x);
+    if (start < 0) return;
+    auto in_cavity = [&](int cell) {
+      return std::find(cavity_.begin(), cavity_.end(), cell) != cavity_.end();
+    };
+    cavity_.assign(1, start);
+    for (std::size_t k = 0; k < cavity_.size() && cavity_.size() < 64; ++k) {
+      const Tetrahedron nodes = complex_.nodes(cavity_[k]);
+      for (int skip = 0; skip < 4; ++skip) {
+        std::array<Index, 3> face{};
+        for (int j = 0, n = 0; j < 4; ++j)
+          if (j != skip) face[static_cast<std::size_t>(n++)] = nodes[static_cast<std::size_t>(j)];
+        const int other = complex_.neighbour(cavity_[k], face[0], face[1], face[2]);
+        if (other < 0 || in_cavity(other)) continue;
+        if (in_circumsphere(other, x)) cavity_.push_back(other);
+      }
+    }
+    if (!in_cavity(t)) return;
+    // The cavity must be star-shaped from x: a face that x sees from behind takes the
+    // tetrahedron beyond it in; a face that cannot be crossed ends the trial.
+    // (Faces seen the right way round stay so as the cavity grows: one sweep does.)
+    for (std::size_t k = 0; k < cavity_.size(); ++k) {
+      const Tetrahedron nodes = complex_.nodes(cavity_[k]);
+      for (int skip = 0; skip < 4; ++skip) {
+        std::array<Index, 3> face{};
+        for (int j = 0, n = 0; j < 4; ++j)
+          if (j != skip) face[static_cast<std::size_t>(n++)] = nodes[static_cast<std::size_t>(j)];
+        const int other = complex_.neighbour(cavity_[k], face[0], face[1], face[2]);
+        if (other >= 0 && in_cavity(other)) continue;
+        const double inside = tetrahedron_volume6(point(face[0]), point(face[1]), point(face[2]),
+                                                  point(nodes[static_cast<std::size_t>(skip)]));
+        const double here = tetrahedron_volume6(point(face[0]), point(face[1]), point(face[2]), x);
+        if (inside * here > 0.0) continue;
+        if (other < 0 || cavity_.size() >= 96) return;
+        cavity_.push_back(other);
+      }
+    }
+    Change change;
+    change.operation = Operation::point_insertion;
+    change.removed = cavity_;
+    double volume_before = 0.0, volume_after = 0.0;
+    for (int cell : cavity_) {
+      change.before.add(quality(complex_, cell), target());
+      const Tetrahedron& n = complex_.nodes(cell);
+      volume_before += std::abs(tetrahedron_volume6(point(n[0]), point(n[1]), point(n[2]), point(n[3])));
+    }
+    complex_.points().push_back(x);
+    const auto scratch = static_cast<Index>(complex_.points().size() - 1);
+    for (int cell : cavity_) {
+      const Tetrahedron nodes = complex_.nodes(cell);
+      for (int skip = 0; skip < 4; ++skip) {
+        std::array<Index, 3> face{};
+        for (int j = 0, n = 0; j < 4; ++j)
+          if (j != skip) face[static_cast<std::size_t>(n++)] = nodes[static_cast<std::size_t>(j)];
+        const int other = complex_.neighbour(cell, face[0], face[1], face[2]);
+        if (other >= 0 && std::find(cavity_.begin(), cavity_.end(), other) != cavity_.end()) continue;
+        Tetrahedron piece = nodes;
+        piece[static_cast<std::size_t>(skip)] = scratch;
+        change.after.add(quality(complex_, piece), target());
+        volume_after +=
+            std::abs(tetrahedron_volume6(point(piece[0]), point(piece[1]), point(piece[2]), point(piece[3])));
+        piece[static_cast<std::size_t>(skip)] = -1;
+        change.added.push_back(piece);
+        change.regions.push_back(complex_.region(cell));
+      }
+    }
+    complex_.points().pop_back();
+    // A cavity round a tetrahedron it does not hold would be covered twice.
+    if (std::abs(volume_after - volume_before) > 1e-9 * volume_before) return;
+    change.new_point = x;
+    consider(std::move(change));
+  }
+
   const Vector3& point(Index p) { return complex_.points()[static_cast<std::size_t>(p)]; }
   double target() const { return 180.0 - options_.target_dihedral_degrees; }
 
@@ -432,6 +595,14 @@ class SliverRemoval {
   std::vector<Index> apexes_;
   std::vector<int> ring_;
   std::optional<Change> best_;
+  std::vector<Vector3> trials_;
+  std::vector<int> cavity_;
+  std::vector<char> insertion_failed_;
+
+  bool insertion_failed(int t) {
+    if (insertion_failed_.size() < complex_.size()) insertion_failed_.resize(complex_.size(), 0);
+    return insertion_failed_[static_cast<std::size_t>(t)] != 0;
+  }
 };
 
 void measure(const TetrahedronComplex& complex, double target, double& largest, std::size_t& above,

@@ -296,7 +296,8 @@ GenerateResult generate_from_surface(const SurfaceMesh& surface, const GenerateO
         fixed_text(slivers.largest_dihedral_after) + " deg), " + std::to_string(slivers.edge_removals) +
         " edge removals, " + std::to_string(slivers.face_flips) + " face flips, " +
         std::to_string(slivers.edge_splits) + " edge splits, " + std::to_string(slivers.point_collapses) +
-        " point collapses, " + std::to_string(slivers.smoothed_points) + " points moved");
+        " point collapses, " + std::to_string(slivers.smoothed_points) + " points moved, " +
+        std::to_string(slivers.point_insertions) + " points inserted");
   }
   result.validity = run_stage("validate", report, [&] { return validate(result.mesh); });
   log.info("validate: " + seconds_text(report.stages.back().seconds) + ", " + result.validity.summary());

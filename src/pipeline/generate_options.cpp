@@ -117,15 +117,17 @@ FarFieldOptions read_farfield_options(config::Section& table) {
 
 //   [slivers]
 //   target_dihedral = 160.0    # degrees: tetrahedra above it are flipped / smoothed
-//   passes = 6                 # 0: no sliver removal
+//   passes = 12                # 0: no sliver removal
 //   maximum_ring = 7
 //   smooth_points = true
+//   insert_points = true
 SliverOptions read_sliver_options(config::Section& table) {
   SliverOptions options;
   table.read("target_dihedral", options.target_dihedral_degrees, Bounds{90.0, 180.0, false, false});
   table.read("passes", options.passes, Bounds::at_least(0));
   table.read("maximum_ring", options.maximum_ring, Bounds::at_least(3));
   table.read("smooth_points", options.smooth_points);
+  table.read("insert_points", options.insert_points);
   table.finish();
   return options;
 }

@@ -1,6 +1,8 @@
 #include <gtest/gtest.h>
 
+#include <fstream>
 #include <random>
+#include <string>
 
 #include "mixmesh/core/error.hpp"
 #include "mixmesh/mesh/cell_geometry.hpp"
@@ -181,6 +183,66 @@ TEST(SliverRemoval, APointOnAFlatBoundaryMovesWithinItsPlane) {
   EXPECT_LT(after, 160.0);
   EXPECT_EQ(mesh.points[moved].z(), 0.0);
   EXPECT_TRUE(match_faces(mesh).conforming());
+}
+
+// The tetrahedra of tests/unit/data/sliver_patch_behind_trailing_edge.txt, its outer
+// faces tagged "wall".
+MixedMesh sliver_patch() {
+  std::ifstream in(std::string(MIXMESH_SOURCE_DIR) +
+                   "/tests/unit/data/sliver_patch_behind_trailing_edge.txt");
+  std::string line;
+  while (in.peek() == '#') std::getline(in, line);
+  MixedMesh mesh;
+  std::size_t count = 0;
+  in >> count;
+  mesh.points.resize(count);
+  for (Vector3& point : mesh.points) in >> point.x() >> point.y() >> point.z();
+  in >> count;
+  for (std::size_t k = 0; k < count; ++k) {
+    Index nodes[4];
+    in >> nodes[0] >> nodes[1] >> nodes[2] >> nodes[3];
+    mesh.add_cell(CellType::tetrahedron, nodes);
+  }
+  in >> count;
+  const int wall = mesh.marker("wall");
+  for (std::size_t k = 0; k < count; ++k) {
+    Index nodes[3];
+    in >> nodes[0] >> nodes[1] >> nodes[2];
+    mesh.add_face(FaceType::triangle, nodes, wall);
+  }
+  EXPECT_TRUE(in) << "cannot read the sliver patch";
+  return mesh;
+}
+
+TEST(SliverRemoval, SliversOnTheHullBehindATrailingEdgeNeedNewPoints) {
+  // A wing's far field behind its trailing edge, where the hull's quads are long and
+  // narrow and nearly flat: tetrahedra lie on two hull triangles of a shallow fold, or
+  // between neighbouring caps, and no flip, split, collapse or move mends the worst;
+  // points inserted above them do.
+  MixedMesh without = sliver_patch();
+  std::size_t above = 0;
+  const double before = largest_dihedral(without, above);
+  ASSERT_GT(before, 179.0);
+  const double volume = total_volume(without);
+  SliverOptions options;
+  options.insert_points = false;
+  const SliverReport plain = remove_slivers(without, options);
+  EXPECT_EQ(plain.point_insertions, 0u);
+  EXPECT_GT(largest_dihedral(without, above), 179.0);
+
+  MixedMesh mesh = sliver_patch();
+  const std::size_t points = mesh.points.size();
+  const SliverReport report = remove_slivers(mesh, SliverOptions{});
+  const double after = largest_dihedral(mesh, above);
+  std::printf("largest dihedral %.2f -> %.2f deg (without insertion %.2f), %zu points inserted\n", before,
+              after, plain.largest_dihedral_after, report.point_insertions);
+  EXPECT_GE(report.point_insertions, 1u);
+  EXPECT_LT(after, 175.0);
+  EXPECT_LT(report.above_target_after, plain.above_target_after);
+  EXPECT_LE(mesh.points.size(), points + report.point_insertions + report.edge_splits);
+  EXPECT_NEAR(total_volume(mesh) / volume, 1.0, 1e-9);
+  EXPECT_TRUE(match_faces(mesh).conforming());
+  EXPECT_EQ(mesh.face_count(), sliver_patch().face_count());
 }
 
 TEST(SliverRemoval, BadOptionsAreRejected) {

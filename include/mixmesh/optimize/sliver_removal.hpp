@@ -21,7 +21,10 @@
 //     neighbour in its place);
 //   - point smoothing: a point used by tetrahedra only moves to the best of a few trial
 //     positions; on a flat boundary (all its boundary faces triangles in one plane) it
-//     moves within that plane.
+//     moves within that plane;
+//   - point insertion, for a sliver none of the above mends: a new point at its
+//     circumcentre or over one of its faces, and the cavity of the tetrahedra whose
+//     circumsphere holds it (grown until it is star-shaped from the point) coned from it.
 // Faces shared with a pyramid, prism or hexahedron and boundary faces are never
 // removed, no point of them moves off its plane, so the mesh stays conforming with every face
 // and marker it had.
@@ -36,9 +39,10 @@ namespace mixmesh {
 struct SliverOptions {
   // Tetrahedra whose largest dihedral angle is above this are worked on.
   double target_dihedral_degrees = 160.0;
-  int passes = 6;
+  int passes = 12;
   int maximum_ring = 7;  // the largest edge ring removed (tetrahedra round the edge)
   bool smooth_points = true;
+  bool insert_points = true;
 };
 
 struct SliverReport {
@@ -47,7 +51,8 @@ struct SliverReport {
   std::size_t above_target_before = 0, above_target_after = 0;
   // Operations done; every edge split appends one point to the mesh.
   // Every point collapse removes one point (the mesh's points are renumbered).
-  std::size_t edge_removals = 0, face_flips = 0, edge_splits = 0, point_collapses = 0, smoothed_points = 0;
+  std::size_t edge_removals = 0, face_flips = 0, edge_splits = 0, point_collapses = 0, smoothed_points = 0,
+              point_insertions = 0;
   int passes = 0;
 };
 
