@@ -293,9 +293,11 @@ void cap_cell(CellType type, std::size_t cell, const Index* nodes, unsigned oute
       out.points.back() = middle + height * normal;
     }
     if (!cell_shape(CellType::pyramid, out.points, pyramid).valid())
-      throw Error("interface: " + std::string(name(type)) + " " + std::to_string(cell) +
-                  (split_tried ? " can neither be split about its centre nor capped" : " cannot be capped") +
-                  " on face " + std::to_string(face) + " near " + point_text(middle));
+      throw UnsplittableCellError(
+          "interface: " + std::string(name(type)) + " " + std::to_string(cell) +
+              (split_tried ? " can neither be split about its centre nor capped" : " cannot be capped") +
+              " on face " + std::to_string(face) + " near " + point_text(middle),
+          middle);
     out.add_cell(CellType::pyramid, pyramid, region);
     ++result.pyramids;
     const double height = (out.points.back() - middle).norm();

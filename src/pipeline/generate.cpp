@@ -158,6 +158,9 @@ GenerateResult generate_from_surface(const SurfaceMesh& surface, const GenerateO
                   ", " + std::to_string(lowest.thickness_lost) + " m of the wall stack lost");
     }
 
+    // Places where the layers stop lower on the next attempt.
+    std::vector<Vector3> crossings;  // (previous_crossings: those of the last retry)
+    std::string retry_reason;
     interface = run_stage("interface", report, [&] {
       const OuterLayer outer = pipeline_detail::outer_layer(
           layers.mesh, {options.march.outer_hull_marker, options.march.hull_side_marker});
@@ -165,77 +168,89 @@ GenerateResult generate_from_surface(const SurfaceMesh& surface, const GenerateO
       // The cells the march tagged for capping, under whatever name it tagged them.
       if (!interface_options.capped_marker.empty())
         interface_options.capped_marker = options.march.hull_side_marker;
-      return split_interface(layers.mesh, outer, interface_options);
-    });
-    log.info("interface: " + seconds_text(report.stages.back().seconds) + ", " +
-             std::to_string(interface.pyramids) + " pyramids, " + std::to_string(interface.tetrahedra) +
-             " tetrahedra, hull of " + std::to_string(interface.hull.size()) + " triangles, " +
-             std::to_string(interface.lowered_caps) + " caps lowered clear of the hull");
-
-    farfield_input = FarFieldInput();
-    if (options.farfield.sizing == FarFieldSizing::anisotropic) {
-      run_stage("metric", report, [&] {
-        std::set<Index> hull_nodes;
-        for (const auto& triangle : interface.hull) hull_nodes.insert(triangle.begin(), triangle.end());
-        // Nodes of the layers take the metrics of the layer cells before the split (the
-        // hexahedra's own shape); points the split added (cap apexes) take those of the
-        // cells around them after it.
-        const Index layer_points = static_cast<Index>(layers.mesh.points.size());
-        std::vector<Index> layer_nodes, added_nodes;
-        for (Index node : hull_nodes) (node < layer_points ? layer_nodes : added_nodes).push_back(node);
-        farfield_input.metric_nodes = layer_nodes;
-        farfield_input.metric_nodes.insert(farfield_input.metric_nodes.end(), added_nodes.begin(),
-                                           added_nodes.end());
-        farfield_input.metrics = node_metrics(layers.mesh, layer_nodes);
-        const std::vector<Matrix3> added_metrics = node_metrics(interface.mesh, added_nodes);
-        farfield_input.metrics.insert(farfield_input.metrics.end(), added_metrics.begin(),
-                                      added_metrics.end());
-        return 0;
-      });
-      log.info("metric: " + seconds_text(report.stages.back().seconds) + ", " +
-               std::to_string(farfield_input.metric_nodes.size()) + " hull node metrics");
-    }
-    farfield_input.points = interface.mesh.points;
-    farfield_input.holes = body_points(surface);
-    farfield_input.hull = interface.hull;
-    FarFieldOptions farfield_options = options.farfield;
-    farfield_options.symmetry_y = surface.symmetry_y;
-    // Far-field sizes are in chords of the wing, not of the hull, whose extent in x
-    // includes the wake.
-    if (farfield_options.reference_chord <= 0.0 && options.surface.wing)
-      farfield_options.reference_chord = options.surface.wing->stations.front().chord;
-    std::vector<Vector3> crossings;  // (previous_crossings: those of the last retry)
-    farfield_result = run_stage("farfield", report, [&]() -> std::optional<FarFieldResult> {
       try {
-        return farfield(farfield_input, farfield_options, log);
-      } catch (const HullIntersectionError& error) {
-        if (attempt < options.hull_retries) {
-          crossings = error.locations;
-          return std::nullopt;
-        }
-        throw Error(error.what() + layer_hint(layers.report));
-      } catch (const Error& error) {
-        const std::string message = error.what();
-        // TetGen can fail outright on a hull the retries are still mending (a base's
-        // stacks stopped by half the layers: an abort on random wing 22 of seed 11, a
-        // quality pass that never ended on wing 20 of seed 14): the same places are
-        // lowered further, as if it had found the crossings there again.
-        const bool tetgen_failed = message.find("TetGen crashed") != std::string::npos ||
-                                   message.find("did not finish within") != std::string::npos;
-        if (tetgen_failed && !previous_crossings.empty() && attempt < options.hull_retries) {
-          log.warning(message + "; lowering the layers further where the last retry did");
-          crossings = previous_crossings;
-          return std::nullopt;
-        }
-        // A hull the far field cannot fill comes from the layers: say where they stopped
-        // and what to change, not only what TetGen found.
-        if (message.find("intersect") == std::string::npos &&
-            message.find("hull edge") == std::string::npos &&
-            message.find("hull is open") == std::string::npos)
-          throw;
-        throw Error(message + layer_hint(layers.report));
+        return split_interface(layers.mesh, outer, interface_options);
+      } catch (const UnsplittableCellError& error) {
+        // An outer cell twisted more than it is thick (next to where the growth stopped
+        // at a tip's trailing edge: random wing 3 of seed 20): lower layers there are
+        // less twisted.
+        if (attempt >= options.hull_retries) throw;
+        crossings = {error.location};
+        retry_reason = error.what();
+        return InterfaceResult();
       }
     });
+    if (!crossings.empty()) log.warning(retry_reason);
+    if (crossings.empty()) {
+      log.info("interface: " + seconds_text(report.stages.back().seconds) + ", " +
+               std::to_string(interface.pyramids) + " pyramids, " + std::to_string(interface.tetrahedra) +
+               " tetrahedra, hull of " + std::to_string(interface.hull.size()) + " triangles, " +
+               std::to_string(interface.lowered_caps) + " caps lowered clear of the hull");
+
+      farfield_input = FarFieldInput();
+      if (options.farfield.sizing == FarFieldSizing::anisotropic) {
+        run_stage("metric", report, [&] {
+          std::set<Index> hull_nodes;
+          for (const auto& triangle : interface.hull) hull_nodes.insert(triangle.begin(), triangle.end());
+          // Nodes of the layers take the metrics of the layer cells before the split (the
+          // hexahedra's own shape); points the split added (cap apexes) take those of the
+          // cells around them after it.
+          const Index layer_points = static_cast<Index>(layers.mesh.points.size());
+          std::vector<Index> layer_nodes, added_nodes;
+          for (Index node : hull_nodes) (node < layer_points ? layer_nodes : added_nodes).push_back(node);
+          farfield_input.metric_nodes = layer_nodes;
+          farfield_input.metric_nodes.insert(farfield_input.metric_nodes.end(), added_nodes.begin(),
+                                             added_nodes.end());
+          farfield_input.metrics = node_metrics(layers.mesh, layer_nodes);
+          const std::vector<Matrix3> added_metrics = node_metrics(interface.mesh, added_nodes);
+          farfield_input.metrics.insert(farfield_input.metrics.end(), added_metrics.begin(),
+                                        added_metrics.end());
+          return 0;
+        });
+        log.info("metric: " + seconds_text(report.stages.back().seconds) + ", " +
+                 std::to_string(farfield_input.metric_nodes.size()) + " hull node metrics");
+      }
+      farfield_input.points = interface.mesh.points;
+      farfield_input.holes = body_points(surface);
+      farfield_input.hull = interface.hull;
+      FarFieldOptions farfield_options = options.farfield;
+      farfield_options.symmetry_y = surface.symmetry_y;
+      // Far-field sizes are in chords of the wing, not of the hull, whose extent in x
+      // includes the wake.
+      if (farfield_options.reference_chord <= 0.0 && options.surface.wing)
+        farfield_options.reference_chord = options.surface.wing->stations.front().chord;
+      farfield_result = run_stage("farfield", report, [&]() -> std::optional<FarFieldResult> {
+        try {
+          return farfield(farfield_input, farfield_options, log);
+        } catch (const HullIntersectionError& error) {
+          if (attempt < options.hull_retries) {
+            crossings = error.locations;
+            return std::nullopt;
+          }
+          throw Error(error.what() + layer_hint(layers.report));
+        } catch (const Error& error) {
+          const std::string message = error.what();
+          // TetGen can fail outright on a hull the retries are still mending (a base's
+          // stacks stopped by half the layers: an abort on random wing 22 of seed 11, a
+          // quality pass that never ended on wing 20 of seed 14): the same places are
+          // lowered further, as if it had found the crossings there again.
+          const bool tetgen_failed = message.find("TetGen crashed") != std::string::npos ||
+                                     message.find("did not finish within") != std::string::npos;
+          if (tetgen_failed && !previous_crossings.empty() && attempt < options.hull_retries) {
+            log.warning(message + "; lowering the layers further where the last retry did");
+            crossings = previous_crossings;
+            return std::nullopt;
+          }
+          // A hull the far field cannot fill comes from the layers: say where they stopped
+          // and what to change, not only what TetGen found.
+          if (message.find("intersect") == std::string::npos &&
+              message.find("hull edge") == std::string::npos &&
+              message.find("hull is open") == std::string::npos)
+            throw;
+          throw Error(message + layer_hint(layers.report));
+        }
+      });
+    }
     if (!farfield_result) {
       // The hull intersects itself where the layers came too close to each other (a
       // strongly tapered tip's trailing edge, a stop the blending could not smooth): the
@@ -265,12 +280,14 @@ GenerateResult generate_from_surface(const SurfaceMesh& surface, const GenerateO
         stops.push_back(stop);
       }
       march_options.forced_stops.insert(march_options.forced_stops.end(), stops.begin(), stops.end());
-      log.warning("farfield: the hull intersects itself near " + point_text(crossings.front()) + " (" +
-                  std::to_string(crossings.size()) + " crossing triangles); the layers within " +
-                  std::to_string(stops.front().radius) + " m of " + std::to_string(stops.size()) +
-                  (stops.size() == 1 ? " place" : " places") + " stop by layer " +
-                  std::to_string(stops.front().layer) + " (retry " + std::to_string(attempt + 1) + " of " +
-                  std::to_string(options.hull_retries) + ")");
+      log.warning((retry_reason.empty()
+                       ? "farfield: the hull intersects itself near " + point_text(crossings.front()) + " (" +
+                             std::to_string(crossings.size()) + " crossing triangles)"
+                       : std::string("interface: a cell neither split nor capped")) +
+                  "; the layers within " + std::to_string(stops.front().radius) + " m of " +
+                  std::to_string(stops.size()) + (stops.size() == 1 ? " place" : " places") +
+                  " stop by layer " + std::to_string(stops.front().layer) + " (retry " +
+                  std::to_string(attempt + 1) + " of " + std::to_string(options.hull_retries) + ")");
       previous_crossings = crossings;
     }
   }

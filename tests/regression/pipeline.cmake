@@ -101,6 +101,21 @@ add_test(NAME pipeline_report_counts_hull_retries
 set_tests_properties(pipeline_report_counts_hull_retries PROPERTIES LABELS regression
                      FIXTURES_REQUIRED hull_crossing_mesh PASS_REGULAR_EXPRESSION "\nhull_retries = 2\n")
 
+# An outer cell that can be neither split nor capped (twisted more than it is thick, at
+# a tip's trailing edge where the growth stopped early) is a place to lower the layers,
+# like a hull crossing: the wing meshes on the first retry (it failed with the
+# interface's error before).
+add_test(NAME pipeline_unsplittable_cell_lowers_the_layers
+         COMMAND mixmesh-cli generate ${CMAKE_CURRENT_LIST_DIR}/pipeline/unsplittable_tip_cell_wing.toml
+                 --output-dir ${pipeline_folder}/unsplittable_cell)
+set_tests_properties(pipeline_unsplittable_cell_lowers_the_layers PROPERTIES LABELS regression
+                     FIXTURES_SETUP unsplittable_cell_mesh
+                     PASS_REGULAR_EXPRESSION "interface: a cell neither split nor capped; [^\n]* stop by layer 16 \\(retry 1 of 3\\).*points [0-9]+  surface elements")
+add_test(NAME pipeline_check_mesh_unsplittable_cell
+         COMMAND ${MIXMESH_PYTHON} ${MIXMESH_CHECK_MESH} ${pipeline_folder}/unsplittable_cell/unsplittable_tip_cell_wing.vtu -q)
+set_tests_properties(pipeline_check_mesh_unsplittable_cell PROPERTIES LABELS regression
+                     FIXTURES_REQUIRED unsplittable_cell_mesh PASS_REGULAR_EXPRESSION "\nVALID")
+
 # The default ONERA M6 mesh (cases/onera_m6.toml, anisotropic far field) keeps its
 # slivers down: the largest dihedral angle under 178.5 deg and under 0.5 % of the
 # tetrahedra above the sliver pass's 160 deg (177.7 deg and 0.30 % when this test was

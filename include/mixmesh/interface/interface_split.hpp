@@ -26,6 +26,7 @@
 #include <string>
 #include <vector>
 
+#include "mixmesh/core/error.hpp"
 #include "mixmesh/mesh/mixed_mesh.hpp"
 
 namespace mixmesh {
@@ -88,6 +89,14 @@ struct InterfaceOptions {
   // A cap on a twisted quad that is inverted at cap_height is raised (doubling) up to
   // this multiple of the quad's longest diagonal.
   double cap_height_limit = 0.5;
+};
+
+// An outer cell that can neither be split about its centre nor capped (a layer cell
+// twisted more than it is thick): where, so that the pipeline can lower the layers there.
+class UnsplittableCellError : public Error {
+ public:
+  UnsplittableCellError(const std::string& message, const Vector3& where) : Error(message), location(where) {}
+  Vector3 location;
 };
 
 struct InterfaceResult {
