@@ -71,6 +71,18 @@ double signed_volume(CellType type, const std::vector<Vector3>& points, const In
   return cell_shape(type, points, nodes).volume;
 }
 
+std::optional<Vector3> tetrahedron_circumcentre(const Vector3& a, const Vector3& b, const Vector3& c,
+                                                const Vector3& d) {
+  // |x - a|^2 = |x - p|^2 for p = b, c, d: (p - a) . (x - a) = |p - a|^2 / 2.
+  Eigen::Matrix3d rows;
+  rows << (b - a).transpose(), (c - a).transpose(), (d - a).transpose();
+  const Vector3 right(0.5 * (b - a).squaredNorm(), 0.5 * (c - a).squaredNorm(), 0.5 * (d - a).squaredNorm());
+  if (!(std::abs(rows.determinant()) > 0.0)) return std::nullopt;
+  const Vector3 centre = a + rows.inverse() * right;
+  if (!centre.allFinite()) return std::nullopt;
+  return centre;
+}
+
 double largest_dihedral_degrees(const Vector3& a, const Vector3& b, const Vector3& c, const Vector3& d) {
   // Unit normals of the faces opposite each vertex, turned away from it. The dihedral
   // angle at an edge is 180 degrees less the angle between the outward normals of its

@@ -14,6 +14,7 @@ namespace mixmesh {
 
 namespace {
 
+using optimize_detail::face_opposite;
 using optimize_detail::Tetrahedron;
 using optimize_detail::TetrahedronComplex;
 
@@ -226,9 +227,7 @@ class SliverRemoval {
   void flip_a_face(int t) {
     const Tetrahedron nodes = complex_.nodes(t);
     for (int skip = 0; skip < 4; ++skip) {
-      std::array<Index, 3> face{};
-      for (int k = 0, n = 0; k < 4; ++k)
-        if (k != skip) face[static_cast<std::size_t>(n++)] = nodes[static_cast<std::size_t>(k)];
+      const std::array<Index, 3> face = face_opposite(nodes, skip);
       const int other = complex_.neighbour(t, face[0], face[1], face[2]);
       if (other < 0) continue;
       const Index d = nodes[static_cast<std::size_t>(skip)];
@@ -435,151 +434,65 @@ class SliverRemoval {
   // Point insertion: a sliver whose four points lie on faces the pass cannot cross (two
   // hull triangles of a shallow concave fold, a cap's side and its neighbour's) has no
   // flip out; a new point above it does. Trial points: the sliver's circumcentre and
-  // points over each of its crossable faces. Each takes the cavity of the tetrahedra
-  // whose circumsphere holds it (Bowyer-Watson), grown from the tetrahedron holding the
-  // point across faces two tetrahedra share, and fills it with the cone from the point.
+  // points over each of its crossable faces, each with its star-shaped Bowyer-Watson
+  // cavity (grown until star-shaped from the point) coned from it.
   void insert_a_point(int t) {
     const Tetrahedron nodes = complex_.nodes(t);
-    double longest = 0.0;
-    Vector3 centroid = Vector3::Zero();
-    for (int k = 0; k < 4; ++k) {
-      centroid += 0.25 * point(nodes[static_cast<std::size_t>(k)]);
-      for (int l = k + 1; l < 4; ++l)
-        longest = std::max(
-            longest,
-            (point(nodes[static_cast<std::size_t>(k)]) - point(nodes[static_cast<std::size_t>(l)])).norm());
-    }
+    const Vector3 &a = point(nodes[0]), &b = point(nodes[1]), &c = point(nodes[2]), &d = point(nodes[3]);
+    const double longest =
+        std::sqrt(std::max({(b - a).squaredNorm(), (c - a).squaredNorm(), (d - a).squaredNorm(),
+                            (c - b).squaredNorm(), (d - b).squaredNorm(), (d - c).squaredNorm()}));
+    const Vector3 centroid = 0.25 * a + 0.25 * b + 0.25 * c + 0.25 * d;
     trials_.clear();
-    if (const auto centre = circumcentre(nodes); centre && (*centre - centroid).norm() < longest)
+    if (const auto centre = tetrahedron_circumcentre(a, b, c, d);
+        centre && (*centre - centroid).norm() < longest)
       trials_.push_back(*centre);
-    for (int skip = 0; skip < 4; ++skip) {
-      std::array<Index, 3> face{};
-      for (int k = 0, n = 0; k < 4; ++k)
-        if (k != skip) face[static_cast<std::size_t>(n++)] = nodes[static_cast<std::size_t>(k)];
-      if (complex_.neighbour(t, face[0], face[1], face[2]) < 0) continue;
+    for (int vertex = 0; vertex < 4; ++vertex) {
+      if (complex_.neighbour_opposite(t, vertex) < 0) continue;
+      const std::array<Index, 3> face = face_opposite(nodes, vertex);
       const Vector3 middle = (point(face[0]) + point(face[1]) + point(face[2])) / 3.0;
       Vector3 normal = (point(face[1]) - point(face[0])).cross(point(face[2]) - point(face[0]));
       if (!(normal.norm() > 0.0)) continue;
       normal.normalize();
-      if (normal.dot(point(nodes[static_cast<std::size_t>(skip)]) - middle) > 0.0) normal = -normal;
+      if (normal.dot(point(nodes[static_cast<std::size_t>(vertex)]) - middle) > 0.0) normal = -normal;
       for (double height : {0.1, 0.25, 0.5}) trials_.push_back(middle + height * longest * normal);
     }
     for (const Vector3& trial : trials_) try_insertion(t, trial);
   }
 
-  std::optional<Vector3> circumcentre(const Tetrahedron& nodes) {
-    const Vector3& a = point(nodes[0]);
-    Eigen::Matrix3d rows;
-    Vector3 right;
-    for (int k = 1; k < 4; ++k) {
-      const Vector3 edge = point(nodes[static_cast<std::size_t>(k)]) - a;
-      rows.row(k - 1) = edge.transpose();
-      right(k - 1) = 0.5 * edge.squaredNorm();
-    }
-    const double determinant = rows.determinant();
-    if (!(std::abs(determinant) > 0.0)) return std::nullopt;
-    const Vector3 centre = a + rows.inverse() * right;
-    if (!centre.allFinite()) return std::nullopt;
-    return centre;
-  }
-
-  // True when x lies strictly inside the circumsphere of tetrahedron t.
-  bool in_circumsphere(int t, const Vector3& x) {
-    const Tetrahedron& nodes = complex_.nodes(t);
-    const auto centre = circumcentre(nodes);
-    if (!centre) return false;
-    return (x - *centre).squaredNorm() < (point(nodes[0]) - *centre).squaredNorm() * (1.0 - 1e-9);
-  }
-
-  // The tetrahedron holding x, walking from t across faces two tetrahedra share; -1
-  // when the walk leaves the tetrahedra or does not arrive.
-  int locate(int t, const Vector3& x) {
-    for (int step = 0; step < 64; ++step) {
-      const Tetrahedron& nodes = complex_.nodes(t);
-      int next = -2;
-      for (int skip = 0; skip < 4 && next == -2; ++skip) {
-        std::array<Index, 3> face{};
-        for (int k = 0, n = 0; k < 4; ++k)
-          if (k != skip) face[static_cast<std::size_t>(n++)] = nodes[static_cast<std::size_t>(k)];
-        const double inside = tetrahedron_volume6(point(face[0]), point(face[1]), point(face[2]),
-                                                  point(nodes[static_cast<std::size_t>(skip)]));
-        const double here = tetrahedron_volume6(point(face[0]), point(face[1]), point(face[2]), x);
-        if (inside * here < 0.0) next = complex_.neighbour(t, face[0], face[1], face[2]);
-      }
-      if (next == -2) return t;
-      if (next < 0) return -1;
-      t = next;
-    }
-    return -1;
-  }
-
   void try_insertion(int t, const Vector3& x) {
-    const int start = locate(t, x);
+    const int start = complex_.locate(t, x);
     if (start < 0) return;
-    auto in_cavity = [&](int cell) {
-      return std::find(cavity_.begin(), cavity_.end(), cell) != cavity_.end();
-    };
-    cavity_.assign(1, start);
-    for (std::size_t k = 0; k < cavity_.size() && cavity_.size() < 64; ++k) {
-      const Tetrahedron nodes = complex_.nodes(cavity_[k]);
-      for (int skip = 0; skip < 4; ++skip) {
-        std::array<Index, 3> face{};
-        for (int j = 0, n = 0; j < 4; ++j)
-          if (j != skip) face[static_cast<std::size_t>(n++)] = nodes[static_cast<std::size_t>(j)];
-        const int other = complex_.neighbour(cavity_[k], face[0], face[1], face[2]);
-        if (other < 0 || in_cavity(other)) continue;
-        if (in_circumsphere(other, x)) cavity_.push_back(other);
-      }
-    }
-    if (!in_cavity(t)) return;
-    // The cavity must be star-shaped from x: a face that x sees from behind takes the
-    // tetrahedron beyond it in; a face that cannot be crossed ends the trial.
-    // (Faces seen the right way round stay so as the cavity grows: one sweep does.)
-    for (std::size_t k = 0; k < cavity_.size(); ++k) {
-      const Tetrahedron nodes = complex_.nodes(cavity_[k]);
-      for (int skip = 0; skip < 4; ++skip) {
-        std::array<Index, 3> face{};
-        for (int j = 0, n = 0; j < 4; ++j)
-          if (j != skip) face[static_cast<std::size_t>(n++)] = nodes[static_cast<std::size_t>(j)];
-        const int other = complex_.neighbour(cavity_[k], face[0], face[1], face[2]);
-        if (other >= 0 && in_cavity(other)) continue;
-        const double inside = tetrahedron_volume6(point(face[0]), point(face[1]), point(face[2]),
-                                                  point(nodes[static_cast<std::size_t>(skip)]));
-        const double here = tetrahedron_volume6(point(face[0]), point(face[1]), point(face[2]), x);
-        if (inside * here > 0.0) continue;
-        if (other < 0 || cavity_.size() >= 96) return;
-        cavity_.push_back(other);
-      }
-    }
+    complex_.circumsphere_cavity(x, start, 64, cavity_);
+    if (std::find(cavity_.begin(), cavity_.end(), t) == cavity_.end()) return;  // would not mend t
+    if (!complex_.make_star_shaped(x, 96, cavity_)) return;
     Change change;
     change.operation = Operation::point_insertion;
     change.removed = cavity_;
     double volume_before = 0.0, volume_after = 0.0;
+    auto volume = [&](const Tetrahedron& n) {
+      return std::abs(tetrahedron_volume6(point(n[0]), point(n[1]), point(n[2]), point(n[3])));
+    };
     for (int cell : cavity_) {
       change.before.add(quality(complex_, cell), target());
-      const Tetrahedron& n = complex_.nodes(cell);
-      volume_before += std::abs(tetrahedron_volume6(point(n[0]), point(n[1]), point(n[2]), point(n[3])));
+      volume_before += volume(complex_.nodes(cell));
     }
+    // Each boundary face of the cavity gives the tetrahedron of its cell with x in place
+    // of the vertex opposite it (the same orientation).
     complex_.points().push_back(x);
     const auto scratch = static_cast<Index>(complex_.points().size() - 1);
-    for (int cell : cavity_) {
-      const Tetrahedron nodes = complex_.nodes(cell);
-      for (int skip = 0; skip < 4; ++skip) {
-        std::array<Index, 3> face{};
-        for (int j = 0, n = 0; j < 4; ++j)
-          if (j != skip) face[static_cast<std::size_t>(n++)] = nodes[static_cast<std::size_t>(j)];
-        const int other = complex_.neighbour(cell, face[0], face[1], face[2]);
+    for (int cell : cavity_)
+      for (int vertex = 0; vertex < 4; ++vertex) {
+        const int other = complex_.neighbour_opposite(cell, vertex);
         if (other >= 0 && std::find(cavity_.begin(), cavity_.end(), other) != cavity_.end()) continue;
-        Tetrahedron piece = nodes;
-        piece[static_cast<std::size_t>(skip)] = scratch;
+        Tetrahedron piece = complex_.nodes(cell);
+        piece[static_cast<std::size_t>(vertex)] = scratch;
         change.after.add(quality(complex_, piece), target());
-        volume_after +=
-            std::abs(tetrahedron_volume6(point(piece[0]), point(piece[1]), point(piece[2]), point(piece[3])));
-        piece[static_cast<std::size_t>(skip)] = -1;
+        volume_after += volume(piece);
+        piece[static_cast<std::size_t>(vertex)] = -1;
         change.added.push_back(piece);
         change.regions.push_back(complex_.region(cell));
       }
-    }
     complex_.points().pop_back();
     // A cavity round a tetrahedron it does not hold would be covered twice.
     if (std::abs(volume_after - volume_before) > 1e-9 * volume_before) return;

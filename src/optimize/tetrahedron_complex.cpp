@@ -1,6 +1,7 @@
 #include "tetrahedron_complex.hpp"
 
 #include <algorithm>
+#include <optional>
 
 #include "mixmesh/mesh/cell_geometry.hpp"
 
@@ -131,6 +132,74 @@ int TetrahedronComplex::neighbour(int t, Index a, Index b, Index c) const {
   const auto slot = faces_.find(key(a, b, c));
   if (slot == faces_.end()) return -1;
   return slot->second[0] == t ? slot->second[1] : slot->second[0];
+}
+
+int TetrahedronComplex::neighbour_opposite(int t, int vertex) const {
+  const std::array<Index, 3> face = face_opposite(nodes(t), vertex);
+  return neighbour(t, face[0], face[1], face[2]);
+}
+
+double TetrahedronComplex::face_side(int t, int vertex, const Vector3& x) const {
+  const Tetrahedron& n = nodes(t);
+  const std::array<Index, 3> face = face_opposite(n, vertex);
+  const auto& p = points();
+  const Vector3& a = p[static_cast<std::size_t>(face[0])];
+  const Vector3& b = p[static_cast<std::size_t>(face[1])];
+  const Vector3& c = p[static_cast<std::size_t>(face[2])];
+  return tetrahedron_volume6(a, b, c, p[static_cast<std::size_t>(n[static_cast<std::size_t>(vertex)])]) *
+         tetrahedron_volume6(a, b, c, x);
+}
+
+int TetrahedronComplex::locate(int t, const Vector3& x) const {
+  for (int step = 0; step < 64; ++step) {
+    int vertex = 0;
+    while (vertex < 4 && !(face_side(t, vertex, x) < 0.0)) ++vertex;
+    if (vertex == 4) return t;
+    t = neighbour_opposite(t, vertex);
+    if (t < 0) return -1;
+  }
+  return -1;
+}
+
+namespace {
+
+bool holds(const std::vector<int>& cavity, int cell) {
+  return std::find(cavity.begin(), cavity.end(), cell) != cavity.end();
+}
+
+}  // namespace
+
+void TetrahedronComplex::circumsphere_cavity(const Vector3& x, int start, std::size_t largest,
+                                             std::vector<int>& cavity) const {
+  auto in_circumsphere = [&](int cell) {
+    const Tetrahedron& n = nodes(cell);
+    const auto& p = points();
+    const std::optional<Vector3> centre =
+        tetrahedron_circumcentre(p[static_cast<std::size_t>(n[0])], p[static_cast<std::size_t>(n[1])],
+                                 p[static_cast<std::size_t>(n[2])], p[static_cast<std::size_t>(n[3])]);
+    return centre && (x - *centre).squaredNorm() <
+                         (p[static_cast<std::size_t>(n[0])] - *centre).squaredNorm() * (1.0 - 1e-9);
+  };
+  cavity.assign(1, start);
+  for (std::size_t k = 0; k < cavity.size() && cavity.size() < largest; ++k)
+    for (int vertex = 0; vertex < 4; ++vertex) {
+      const int other = neighbour_opposite(cavity[k], vertex);
+      if (other >= 0 && !holds(cavity, other) && in_circumsphere(other)) cavity.push_back(other);
+    }
+}
+
+bool TetrahedronComplex::make_star_shaped(const Vector3& x, std::size_t largest,
+                                          std::vector<int>& cavity) const {
+  // A face seen from behind takes the tetrahedron beyond it in. (Faces seen the right
+  // way round stay so as the cavity grows: one sweep does.)
+  for (std::size_t k = 0; k < cavity.size(); ++k)
+    for (int vertex = 0; vertex < 4; ++vertex) {
+      const int other = neighbour_opposite(cavity[k], vertex);
+      if ((other >= 0 && holds(cavity, other)) || face_side(cavity[k], vertex, x) > 0.0) continue;
+      if (other < 0 || cavity.size() >= largest) return false;
+      cavity.push_back(other);
+    }
+  return true;
 }
 
 bool TetrahedronComplex::ring(int t, Index a, Index b, std::vector<Index>& apexes,

@@ -15,6 +15,14 @@ namespace mixmesh::optimize_detail {
 
 using Tetrahedron = std::array<Index, 4>;
 
+// The face of a tetrahedron opposite its vertex `vertex`: the other three, in order.
+inline std::array<Index, 3> face_opposite(const Tetrahedron& nodes, int vertex) {
+  std::array<Index, 3> face{};
+  for (int k = 0, n = 0; k < 4; ++k)
+    if (k != vertex) face[static_cast<std::size_t>(n++)] = nodes[static_cast<std::size_t>(k)];
+  return face;
+}
+
 class TetrahedronComplex {
  public:
   // Tetrahedra of `mesh`, and its points (kept by reference: smoothing moves them).
@@ -39,6 +47,21 @@ class TetrahedronComplex {
 
   // The tetrahedron across face (a, b, c) from t, or -1.
   int neighbour(int t, Index a, Index b, Index c) const;
+  // The tetrahedron across t's face opposite its vertex `vertex`, or -1.
+  int neighbour_opposite(int t, int vertex) const;
+  // Positive when x lies on the same side of t's face opposite `vertex` as the vertex,
+  // negative on the far side, zero on the face's plane.
+  double face_side(int t, int vertex, const Vector3& x) const;
+  // The tetrahedron holding x, walking from t across faces two tetrahedra share; -1
+  // when the walk leaves the tetrahedra or does not arrive.
+  int locate(int t, const Vector3& x) const;
+  // The cavity of a new point x (Bowyer-Watson): the tetrahedra whose circumsphere
+  // holds it, grown from `start` (the tetrahedron holding it) across shared faces until
+  // it has `largest` tetrahedra.
+  void circumsphere_cavity(const Vector3& x, int start, std::size_t largest, std::vector<int>& cavity) const;
+  // Grows a cavity until x sees every face of its boundary from inside; false when it
+  // would cross a face no two tetrahedra share or grow past `largest` tetrahedra.
+  bool make_star_shaped(const Vector3& x, std::size_t largest, std::vector<int>& cavity) const;
   // The apexes round edge (a, b), in order, starting in tetrahedron t, and the
   // tetrahedra between them (tetrahedra[i] has apexes i and i + 1); empty when the
   // ring does not close (the edge is on a boundary or a face of another cell type).

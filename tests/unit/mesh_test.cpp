@@ -73,6 +73,17 @@ TEST(CellGeometry, ReferenceVolumesAreExact) {
   }
 }
 
+TEST(CellGeometry, CircumcentreIsEquallyFarFromAllFourPointsAndAbsentForAFlatSet) {
+  const Vector3 a(0.3, -1.0, 2.0), b(2.0, 0.5, 1.0), c(-0.5, 1.5, 0.2), d(0.1, 0.2, -1.7);
+  const std::optional<Vector3> centre = tetrahedron_circumcentre(a, b, c, d);
+  ASSERT_TRUE(centre.has_value());
+  const double radius = (a - *centre).norm();
+  for (const Vector3& p : {b, c, d}) EXPECT_NEAR((p - *centre).norm(), radius, 1e-12 * radius);
+  EXPECT_FALSE(
+      tetrahedron_circumcentre(Vector3(0, 0, 0), Vector3(1, 0, 0), Vector3(0, 1, 0), Vector3(1, 1, 0))
+          .has_value());
+}
+
 TEST(CellGeometry, MirroredCellsAreInvalid) {
   for (CellType type : all_cell_types) {
     MixedMesh mesh = reference::single_cell(type);

@@ -6,6 +6,8 @@
 // tangled hex can have a positive volume with a folded corner.
 #pragma once
 
+#include <optional>
+
 #include "mixmesh/mesh/mixed_mesh.hpp"
 
 namespace mixmesh {
@@ -34,6 +36,10 @@ inline double tetrahedron_volume6(const Vector3& a, const Vector3& b, const Vect
 // The largest dihedral angle of tetrahedron (a, b, c, d), in degrees: near 180 for a
 // sliver (four nearly coplanar, well-spread points), at most 90 for a tetrahedron with a
 // right-angled corner however it is stretched; 180 for a degenerate one.
+// Centre of the sphere through the four points; none when they are coplanar.
+std::optional<Vector3> tetrahedron_circumcentre(const Vector3& a, const Vector3& b, const Vector3& c,
+                                                const Vector3& d);
+
 double largest_dihedral_degrees(const Vector3& a, const Vector3& b, const Vector3& c, const Vector3& d);
 
 // Area-weighted normal of a face (Newell's method): length = area for a planar face.
