@@ -134,6 +134,43 @@ GenerateResult generate_from_surface(const SurfaceMesh& surface, const GenerateO
   std::optional<FarFieldResult> farfield_result;
   const std::size_t first_stage = report.stages.size();
   std::vector<Vector3> previous_crossings;
+  // Lowers the layers round `crossings` for the next attempt, and says why (`reason`).
+  // The hull intersects itself where the layers came too close to each other (a
+  // strongly tapered tip's trailing edge, a stop the blending could not smooth), and an
+  // outer cell is twisted more than it is thick beside an early stop: the columns round
+  // the place stop lower and slope down to it, and the stages run again. Each retry
+  // reaches further and lower.
+  auto lower_layers = [&](int attempt, const std::vector<Vector3>& crossings, const std::string& reason) {
+    // Every crossing TetGen found gets a stop (one for all the crossings within half a
+    // stop's reach of it): a blunt base crosses the sheet's first lines all along the
+    // wing, and a stop at the first crossing alone left the others.
+    // Reach: three layer thicknesses and the surface cells there (twice the distance
+    // to the nearest surface node; thin layers alone reached no face on a small wing),
+    // growing with each retry; depth: half the layers, then half as many again each
+    // time (behind a blunt base the crossings lie low in the layers, and four layers
+    // less per retry never reached them).
+    std::vector<ForcedStop> stops;
+    for (const Vector3& crossing : crossings) {
+      const bool covered = std::any_of(stops.begin(), stops.end(), [&](const ForcedStop& other) {
+        return (other.centre - crossing).norm() < 0.5 * other.radius;
+      });
+      if (covered) continue;
+      double nearest_node = std::numeric_limits<double>::infinity();
+      for (const Vector3& point : surface.points)
+        nearest_node = std::min(nearest_node, (point - crossing).norm());
+      ForcedStop stop;
+      stop.centre = crossing;
+      stop.radius = (attempt + 1) * (3.0 * layers.report.total_thickness + 2.0 * nearest_node);
+      stop.layer = std::max(1, march_options.spacing.layer_count >> (attempt + 1));
+      stops.push_back(stop);
+    }
+    march_options.forced_stops.insert(march_options.forced_stops.end(), stops.begin(), stops.end());
+    log.warning(reason + "; the layers within " + std::to_string(stops.front().radius) + " m of " +
+                std::to_string(stops.size()) + (stops.size() == 1 ? " place" : " places") +
+                " stop by layer " + std::to_string(stops.front().layer) + " (retry " +
+                std::to_string(attempt + 1) + " of " + std::to_string(options.hull_retries) + ")");
+    previous_crossings = crossings;
+  };
   for (int attempt = 0; !farfield_result; ++attempt) {
     report.hull_retries = attempt;
     // A retry's stage timings replace those of the attempt before.
@@ -158,9 +195,7 @@ GenerateResult generate_from_surface(const SurfaceMesh& surface, const GenerateO
                   ", " + std::to_string(lowest.thickness_lost) + " m of the wall stack lost");
     }
 
-    // Places where the layers stop lower on the next attempt.
-    std::vector<Vector3> crossings;  // (previous_crossings: those of the last retry)
-    std::string retry_reason;
+    std::optional<Vector3> unsplittable;
     interface = run_stage("interface", report, [&] {
       const OuterLayer outer = pipeline_detail::outer_layer(
           layers.mesh, {options.march.outer_hull_marker, options.march.hull_side_marker});
@@ -175,121 +210,88 @@ GenerateResult generate_from_surface(const SurfaceMesh& surface, const GenerateO
         // at a tip's trailing edge: random wing 3 of seed 20): lower layers there are
         // less twisted.
         if (attempt >= options.hull_retries) throw;
-        crossings = {error.location};
-        retry_reason = error.what();
+        log.warning(error.what());
+        unsplittable = error.location;
         return InterfaceResult();
       }
     });
-    if (!crossings.empty()) log.warning(retry_reason);
-    if (crossings.empty()) {
-      log.info("interface: " + seconds_text(report.stages.back().seconds) + ", " +
-               std::to_string(interface.pyramids) + " pyramids, " + std::to_string(interface.tetrahedra) +
-               " tetrahedra, hull of " + std::to_string(interface.hull.size()) + " triangles, " +
-               std::to_string(interface.lowered_caps) + " caps lowered clear of the hull");
+    if (unsplittable) {
+      lower_layers(attempt, {*unsplittable}, "interface: a cell neither split nor capped");
+      continue;
+    }
+    log.info("interface: " + seconds_text(report.stages.back().seconds) + ", " +
+             std::to_string(interface.pyramids) + " pyramids, " + std::to_string(interface.tetrahedra) +
+             " tetrahedra, hull of " + std::to_string(interface.hull.size()) + " triangles, " +
+             std::to_string(interface.lowered_caps) + " caps lowered clear of the hull");
 
-      farfield_input = FarFieldInput();
-      if (options.farfield.sizing == FarFieldSizing::anisotropic) {
-        run_stage("metric", report, [&] {
-          std::set<Index> hull_nodes;
-          for (const auto& triangle : interface.hull) hull_nodes.insert(triangle.begin(), triangle.end());
-          // Nodes of the layers take the metrics of the layer cells before the split (the
-          // hexahedra's own shape); points the split added (cap apexes) take those of the
-          // cells around them after it.
-          const Index layer_points = static_cast<Index>(layers.mesh.points.size());
-          std::vector<Index> layer_nodes, added_nodes;
-          for (Index node : hull_nodes) (node < layer_points ? layer_nodes : added_nodes).push_back(node);
-          farfield_input.metric_nodes = layer_nodes;
-          farfield_input.metric_nodes.insert(farfield_input.metric_nodes.end(), added_nodes.begin(),
-                                             added_nodes.end());
-          farfield_input.metrics = node_metrics(layers.mesh, layer_nodes);
-          const std::vector<Matrix3> added_metrics = node_metrics(interface.mesh, added_nodes);
-          farfield_input.metrics.insert(farfield_input.metrics.end(), added_metrics.begin(),
-                                        added_metrics.end());
-          return 0;
-        });
-        log.info("metric: " + seconds_text(report.stages.back().seconds) + ", " +
-                 std::to_string(farfield_input.metric_nodes.size()) + " hull node metrics");
-      }
-      farfield_input.points = interface.mesh.points;
-      farfield_input.holes = body_points(surface);
-      farfield_input.hull = interface.hull;
-      FarFieldOptions farfield_options = options.farfield;
-      farfield_options.symmetry_y = surface.symmetry_y;
-      // Far-field sizes are in chords of the wing, not of the hull, whose extent in x
-      // includes the wake.
-      if (farfield_options.reference_chord <= 0.0 && options.surface.wing)
-        farfield_options.reference_chord = options.surface.wing->stations.front().chord;
-      farfield_result = run_stage("farfield", report, [&]() -> std::optional<FarFieldResult> {
-        try {
-          return farfield(farfield_input, farfield_options, log);
-        } catch (const HullIntersectionError& error) {
-          if (attempt < options.hull_retries) {
-            crossings = error.locations;
-            return std::nullopt;
-          }
-          throw Error(error.what() + layer_hint(layers.report));
-        } catch (const Error& error) {
-          const std::string message = error.what();
-          // TetGen can fail outright on a hull the retries are still mending (a base's
-          // stacks stopped by half the layers: an abort on random wing 22 of seed 11, a
-          // quality pass that never ended on wing 20 of seed 14): the same places are
-          // lowered further, as if it had found the crossings there again.
-          const bool tetgen_failed = message.find("TetGen crashed") != std::string::npos ||
-                                     message.find("did not finish within") != std::string::npos;
-          if (tetgen_failed && !previous_crossings.empty() && attempt < options.hull_retries) {
-            log.warning(message + "; lowering the layers further where the last retry did");
-            crossings = previous_crossings;
-            return std::nullopt;
-          }
-          // A hull the far field cannot fill comes from the layers: say where they stopped
-          // and what to change, not only what TetGen found.
-          if (message.find("intersect") == std::string::npos &&
-              message.find("hull edge") == std::string::npos &&
-              message.find("hull is open") == std::string::npos)
-            throw;
-          throw Error(message + layer_hint(layers.report));
-        }
+    farfield_input = FarFieldInput();
+    if (options.farfield.sizing == FarFieldSizing::anisotropic) {
+      run_stage("metric", report, [&] {
+        std::set<Index> hull_nodes;
+        for (const auto& triangle : interface.hull) hull_nodes.insert(triangle.begin(), triangle.end());
+        // Nodes of the layers take the metrics of the layer cells before the split (the
+        // hexahedra's own shape); points the split added (cap apexes) take those of the
+        // cells around them after it.
+        const Index layer_points = static_cast<Index>(layers.mesh.points.size());
+        std::vector<Index> layer_nodes, added_nodes;
+        for (Index node : hull_nodes) (node < layer_points ? layer_nodes : added_nodes).push_back(node);
+        farfield_input.metric_nodes = layer_nodes;
+        farfield_input.metric_nodes.insert(farfield_input.metric_nodes.end(), added_nodes.begin(),
+                                           added_nodes.end());
+        farfield_input.metrics = node_metrics(layers.mesh, layer_nodes);
+        const std::vector<Matrix3> added_metrics = node_metrics(interface.mesh, added_nodes);
+        farfield_input.metrics.insert(farfield_input.metrics.end(), added_metrics.begin(),
+                                      added_metrics.end());
+        return 0;
       });
+      log.info("metric: " + seconds_text(report.stages.back().seconds) + ", " +
+               std::to_string(farfield_input.metric_nodes.size()) + " hull node metrics");
     }
-    if (!farfield_result) {
-      // The hull intersects itself where the layers came too close to each other (a
-      // strongly tapered tip's trailing edge, a stop the blending could not smooth): the
-      // columns round the crossing stop lower and slope down to it, and the stages run
-      // again. Each retry reaches further and lower.
-      // Every crossing TetGen found gets a stop (one for all the crossings within half a
-      // stop's reach of it): a blunt base crosses the sheet's first lines all along the
-      // wing, and a stop at the first crossing alone left the others.
-      // Reach: three layer thicknesses and the surface cells there (twice the distance
-      // to the nearest surface node; thin layers alone reached no face on a small wing),
-      // growing with each retry; depth: half the layers, then half as many again each
-      // time (behind a blunt base the crossings lie low in the layers, and four layers
-      // less per retry never reached them).
-      std::vector<ForcedStop> stops;
-      for (const Vector3& crossing : crossings) {
-        const bool covered = std::any_of(stops.begin(), stops.end(), [&](const ForcedStop& other) {
-          return (other.centre - crossing).norm() < 0.5 * other.radius;
-        });
-        if (covered) continue;
-        double nearest_node = std::numeric_limits<double>::infinity();
-        for (const Vector3& point : surface.points)
-          nearest_node = std::min(nearest_node, (point - crossing).norm());
-        ForcedStop stop;
-        stop.centre = crossing;
-        stop.radius = (attempt + 1) * (3.0 * layers.report.total_thickness + 2.0 * nearest_node);
-        stop.layer = std::max(1, march_options.spacing.layer_count >> (attempt + 1));
-        stops.push_back(stop);
+    farfield_input.points = interface.mesh.points;
+    farfield_input.holes = body_points(surface);
+    farfield_input.hull = interface.hull;
+    FarFieldOptions farfield_options = options.farfield;
+    farfield_options.symmetry_y = surface.symmetry_y;
+    // Far-field sizes are in chords of the wing, not of the hull, whose extent in x
+    // includes the wake.
+    if (farfield_options.reference_chord <= 0.0 && options.surface.wing)
+      farfield_options.reference_chord = options.surface.wing->stations.front().chord;
+    std::vector<Vector3> crossings;  // (previous_crossings: those of the last retry)
+    farfield_result = run_stage("farfield", report, [&]() -> std::optional<FarFieldResult> {
+      try {
+        return farfield(farfield_input, farfield_options, log);
+      } catch (const HullIntersectionError& error) {
+        if (attempt < options.hull_retries) {
+          crossings = error.locations;
+          return std::nullopt;
+        }
+        throw Error(error.what() + layer_hint(layers.report));
+      } catch (const Error& error) {
+        const std::string message = error.what();
+        // TetGen can fail outright on a hull the retries are still mending (a base's
+        // stacks stopped by half the layers: an abort on random wing 22 of seed 11, a
+        // quality pass that never ended on wing 20 of seed 14): the same places are
+        // lowered further, as if it had found the crossings there again.
+        const bool tetgen_failed = message.find("TetGen crashed") != std::string::npos ||
+                                   message.find("did not finish within") != std::string::npos;
+        if (tetgen_failed && !previous_crossings.empty() && attempt < options.hull_retries) {
+          log.warning(message + "; lowering the layers further where the last retry did");
+          crossings = previous_crossings;
+          return std::nullopt;
+        }
+        // A hull the far field cannot fill comes from the layers: say where they stopped
+        // and what to change, not only what TetGen found.
+        if (message.find("intersect") == std::string::npos &&
+            message.find("hull edge") == std::string::npos &&
+            message.find("hull is open") == std::string::npos)
+          throw;
+        throw Error(message + layer_hint(layers.report));
       }
-      march_options.forced_stops.insert(march_options.forced_stops.end(), stops.begin(), stops.end());
-      log.warning((retry_reason.empty()
-                       ? "farfield: the hull intersects itself near " + point_text(crossings.front()) + " (" +
-                             std::to_string(crossings.size()) + " crossing triangles)"
-                       : std::string("interface: a cell neither split nor capped")) +
-                  "; the layers within " + std::to_string(stops.front().radius) + " m of " +
-                  std::to_string(stops.size()) + (stops.size() == 1 ? " place" : " places") +
-                  " stop by layer " + std::to_string(stops.front().layer) + " (retry " +
-                  std::to_string(attempt + 1) + " of " + std::to_string(options.hull_retries) + ")");
-      previous_crossings = crossings;
-    }
+    });
+    if (!farfield_result)
+      lower_layers(attempt, crossings,
+                   "farfield: the hull intersects itself near " + point_text(crossings.front()) + " (" +
+                       std::to_string(crossings.size()) + " crossing triangles)");
   }
   log.info("farfield: " + seconds_text(report.stages.back().seconds) + ", " +
            std::to_string(farfield_result->mesh.cell_count(CellType::tetrahedron)) + " tetrahedra, " +
