@@ -7,6 +7,7 @@
 #include <unordered_map>
 
 #include "mixmesh/core/error.hpp"
+#include "mixmesh/mesh/cell_geometry.hpp"
 
 namespace mixmesh::march_detail {
 
@@ -625,6 +626,18 @@ Front build_front(const SurfaceMesh& surface) {
     face_base += quads * static_cast<std::size_t>(sides);
   }
   return front;
+}
+
+std::vector<Vector3> wall_face_normals(const Front& front, const std::vector<Vector3>& points,
+                                       const std::vector<char>& face_active, int line) {
+  std::vector<Vector3> normals;
+  for (int face : front.column_faces[static_cast<std::size_t>(line)]) {
+    const FrontFace& wall = front.faces[static_cast<std::size_t>(face)];
+    if (!wall.wall || !face_active[static_cast<std::size_t>(face)]) continue;
+    const Vector3 area = face_area_vector(points, wall.columns.data(), wall.corner_count);
+    if (area.norm() > 0.0) normals.push_back(area.normalized());
+  }
+  return normals;
 }
 
 }  // namespace mixmesh::march_detail

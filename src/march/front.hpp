@@ -82,4 +82,9 @@ struct Front {
 // faces, inconsistent orientation or edges with more than two faces on one side.
 Front build_front(const SurfaceMesh& surface);
 
+// Unit normals of the active wall faces at a line (column), in the order of
+// front.column_faces; faces of no area are left out.
+std::vector<Vector3> wall_face_normals(const Front& front, const std::vector<Vector3>& points,
+                                       const std::vector<char>& face_active, int line);
+
 }  // namespace mixmesh::march_detail

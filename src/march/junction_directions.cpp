@@ -45,16 +45,10 @@ std::vector<Vector3> junction_directions(const Front& front, const std::vector<V
   for (const Junction& junction : front.junctions)
     for (int end : {0, 1}) {
       const int line = front.faces[static_cast<std::size_t>(junction.face)].columns[end == 0 ? 0 : 3];
-      std::vector<Vector3> normals;
+      std::vector<Vector3> normals = wall_face_normals(front, points, face_active, line);
       const Vector3 opening =
           wrap_opening(front, points, face_active, line, junction.sheet[static_cast<std::size_t>(end)]);
-      if (opening.squaredNorm() > 0.0) normals.push_back(opening);
-      for (int face : front.column_faces[static_cast<std::size_t>(line)]) {
-        const FrontFace& wall = front.faces[static_cast<std::size_t>(face)];
-        if (!wall.wall || !face_active[static_cast<std::size_t>(face)]) continue;
-        const Vector3 area = face_area_vector(points, wall.columns.data(), wall.corner_count);
-        if (area.norm() > 0.0) normals.push_back(area.normalized());
-      }
+      if (opening.squaredNorm() > 0.0) normals.insert(normals.begin(), opening);
       directions[static_cast<std::size_t>(line)] = visible_direction(normals);
     }
   return directions;

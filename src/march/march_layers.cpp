@@ -263,25 +263,28 @@ Vector3 off_the_sheet(const Vector3& normal, const Vector3& sheet_normal) {
 void see_every_wall_face(const Front& front, const std::vector<Vector3>& points,
                          const std::vector<char>& face_active, const std::vector<char>& on_wall,
                          const std::vector<char>& junction_line, std::vector<Vector3>& normal) {
-  std::vector<std::vector<Vector3>> fan(points.size());
+  // The wall faces' unit normals once per layer; the fan of a line only where it leans
+  // under one of them (a few lines, every layer).
+  std::vector<Vector3> unit(front.faces.size(), Vector3::Zero());
   for (std::size_t face = 0; face < front.faces.size(); ++face) {
     const FrontFace& f = front.faces[face];
     if (!f.wall || !face_active[face]) continue;
     const Vector3 area = face_area_vector(points, f.columns.data(), f.corner_count);
-    if (area.norm() == 0.0) continue;
-    for (int k = 0; k < f.corner_count; ++k)
-      fan[static_cast<std::size_t>(f.columns[static_cast<std::size_t>(k)])].push_back(area.normalized());
+    if (area.norm() > 0.0) unit[face] = area.normalized();
   }
   for (std::size_t c = 0; c < points.size(); ++c) {
-    if (!on_wall[c] || junction_line[c] || fan[c].empty()) continue;
-    const bool below = std::any_of(fan[c].begin(), fan[c].end(), [&](const Vector3& face_normal) {
-      return face_normal.dot(normal[c]) <= 0.0;
+    if (!on_wall[c] || junction_line[c]) continue;
+    const auto& faces = front.column_faces[c];
+    const bool below = std::any_of(faces.begin(), faces.end(), [&](int face) {
+      const Vector3& face_normal = unit[static_cast<std::size_t>(face)];
+      return !face_normal.isZero() && face_normal.dot(normal[c]) <= 0.0;
     });
     if (!below) continue;
+    std::vector<Vector3> fan = wall_face_normals(front, points, face_active, static_cast<int>(c));
     if (front.on_symmetry[c])
-      for (Vector3& face_normal : fan[c])
+      for (Vector3& face_normal : fan)
         face_normal = unit_or(Vector3(face_normal.x(), 0.0, face_normal.z()), face_normal);
-    const Vector3 seeing = visible_direction(fan[c]);
+    const Vector3 seeing = visible_direction(fan);
     if (seeing.squaredNorm() > 0.0) normal[c] = seeing;
   }
 }
