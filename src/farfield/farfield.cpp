@@ -263,8 +263,9 @@ FarFieldResult farfield(const FarFieldInput& input, const FarFieldOptions& optio
   // Pass 1: the quality run (-q, -m), in the preconditioned space when asked.
   Stopwatch watch;
   farfield_parts::TetgenOutput tetrahedra;
+  tetgen.time_limit_seconds =
+      options.precondition ? options.precondition_time_limit : options.tetgen_time_limit;
   if (options.precondition) {
-    tetgen.time_limit_seconds = options.precondition_time_limit;
     try {
       tetrahedra = farfield_parts::run_tetgen(tetgen);
     } catch (const Error& error) {
@@ -277,7 +278,6 @@ FarFieldResult farfield(const FarFieldInput& input, const FarFieldOptions& optio
       tetrahedra = farfield_parts::run_tetgen(tetgen);
     }
   } else {
-    tetgen.time_limit_seconds = options.tetgen_time_limit;
     tetrahedra = farfield_parts::run_tetgen(tetgen);
   }
   log.info("farfield: quality pass " + seconds_text(watch.seconds()) + ", " +
