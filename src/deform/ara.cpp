@@ -397,13 +397,7 @@ std::vector<Vector3> AraMethod::move(const MixedMesh& mesh, const BoundaryMotion
     detail::project_sliding(boundary, points, result);
     // Only the cells of the moved nodes change: checking those alone instead of every
     // cell gives the same count (a full check of the M6's 701 k cells took 0.1–0.2 s a pass).
-    std::vector<Index> changed;
-    for (Index node : nodes)
-      for (std::size_t slot = dual.point_cell_offsets[static_cast<std::size_t>(node)];
-           slot < dual.point_cell_offsets[static_cast<std::size_t>(node) + 1]; ++slot)
-        changed.push_back(dual.point_cells[slot]);
-    std::sort(changed.begin(), changed.end());
-    changed.erase(std::unique(changed.begin(), changed.end()), changed.end());
+    const std::vector<Index> changed = detail::cells_of_nodes(dual, nodes);
     detail::parallel_items(changed.size(), [&](std::size_t slot) {
       const std::size_t cell = static_cast<std::size_t>(changed[slot]);
       deformed_volume[cell] = detail::cell_measure(dual, cell, result);

@@ -102,7 +102,7 @@ DeformResult step_from(const MixedMesh& mesh, const MixedMesh& reference, const 
   const WallLines& lines = measured->lines;
   const std::vector<double> after = wall_angles(result.mesh, lines);
   result.before = measured->quality;
-  result.after = detail::summarise_quality(result.mesh, dual, after);
+  result.after = detail::summarise_quality(result.mesh, dual, after, &untangled.invalid);
   result.invalid_count = result.after.invalid_cells;
   for (std::size_t cell = 0; cell < dual.cell_count() && result.invalid_examples.size() < 5 &&
                              result.invalid_examples.size() < result.invalid_count;

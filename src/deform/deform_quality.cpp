@@ -132,7 +132,8 @@ std::vector<double> wall_angles(const MixedMesh& mesh, const WallLines& lines) {
 }
 
 QualitySummary detail::summarise_quality(const MixedMesh& mesh, const DualMesh& dual,
-                                         const std::vector<double>& angles) {
+                                         const std::vector<double>& angles,
+                                         const std::vector<char>* invalid) {
   QualitySummary summary;
   struct Partial {
     double min_jacobian = std::numeric_limits<double>::infinity();
@@ -151,7 +152,8 @@ QualitySummary detail::summarise_quality(const MixedMesh& mesh, const DualMesh& 
                                     mesh.points, nodes)
                   : scaled_jacobian(static_cast<CellType>(kind), mesh.points, nodes);
           partial.min_jacobian = std::min(partial.min_jacobian, jacobian);
-          partial.invalid += !detail::cell_valid(dual, cell, mesh.points);
+          partial.invalid += invalid ? static_cast<std::size_t>((*invalid)[cell])
+                                     : static_cast<std::size_t>(!detail::cell_valid(dual, cell, mesh.points));
           if (kind == index(CellType::tetrahedron)) {
             const double eta = sliver(mesh.points, nodes);
             const int bin = std::clamp(static_cast<int>(eta / 0.0745), 0, 9);

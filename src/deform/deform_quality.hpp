@@ -11,8 +11,10 @@ WallLines wall_lines(const MixedMesh& mesh, const DualMesh& dual,
                      const std::vector<MarkerRole>& marker_roles);
 
 // `dual` may come from another mesh with the same cells (the undeformed one); `angles`
-// are wall_angles(mesh, lines) of this mesh.
+// are wall_angles(mesh, lines) of this mesh; `invalid` (per cell, when known) saves
+// checking each cell's validity again.
 QualitySummary summarise_quality(const MixedMesh& mesh, const DualMesh& dual,
-                                 const std::vector<double>& angles);
+                                 const std::vector<double>& angles,
+                                 const std::vector<char>* invalid = nullptr);
 
 }  // namespace mixmesh::deform::detail

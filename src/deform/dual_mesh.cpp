@@ -244,6 +244,17 @@ double cell_measure(const DualMesh& dual, std::size_t cell, const std::vector<Ve
   return signed_volume(static_cast<CellType>(kind), points, dual.nodes(cell));
 }
 
+std::vector<Index> cells_of_nodes(const DualMesh& dual, const std::vector<Index>& nodes) {
+  std::vector<Index> cells;
+  for (Index node : nodes)
+    for (std::size_t slot = dual.point_cell_offsets[static_cast<std::size_t>(node)];
+         slot < dual.point_cell_offsets[static_cast<std::size_t>(node) + 1]; ++slot)
+      cells.push_back(dual.point_cells[slot]);
+  std::sort(cells.begin(), cells.end());
+  cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
+  return cells;
+}
+
 bool cell_valid(const DualMesh& dual, std::size_t cell, const std::vector<Vector3>& points) {
   const int kind = dual.cell_kind[cell];
   if (kind < planar_triangle)

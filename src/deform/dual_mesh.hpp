@@ -66,6 +66,8 @@ double cell_measure(const DualMesh& dual, std::size_t cell, const std::vector<Ve
 // Positive volume and no tangled corner (volume: mixmesh::cell_shape; planar: positive
 // area and every corner turning counter-clockwise).
 bool cell_valid(const DualMesh& dual, std::size_t cell, const std::vector<Vector3>& points);
+// The cells using any of `nodes`, sorted, each once.
+std::vector<Index> cells_of_nodes(const DualMesh& dual, const std::vector<Index>& nodes);
 // "hexahedron", "quad", …
 std::string cell_kind_name(int kind);
 

@@ -47,13 +47,17 @@ Vector3 fit_rotation(const std::vector<Vector3>& before, const std::vector<Vecto
   return rotation_vector(rotation);
 }
 
+void project_sliding(const BoundaryMotion& boundary, const std::vector<Vector3>& original, std::size_t node,
+                     Vector3& position) {
+  if (boundary.roles[node] != NodeRole::sliding) return;
+  const Vector3& normal = boundary.slide_normal[node];
+  position -= (position - original[node]).dot(normal) * normal;
+}
+
 void project_sliding(const BoundaryMotion& boundary, const std::vector<Vector3>& original,
                      std::vector<Vector3>& moved) {
-  for (std::size_t node = 0; node < moved.size(); ++node) {
-    if (boundary.roles[node] != NodeRole::sliding) continue;
-    const Vector3& normal = boundary.slide_normal[node];
-    moved[node] -= (moved[node] - original[node]).dot(normal) * normal;
-  }
+  for (std::size_t node = 0; node < moved.size(); ++node)
+    project_sliding(boundary, original, node, moved[node]);
 }
 
 }  // namespace mixmesh::deform::detail

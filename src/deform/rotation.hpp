@@ -26,5 +26,8 @@ Vector3 fit_rotation(const std::vector<Vector3>& before, const std::vector<Vecto
 // in `original` (removes the normal part of their displacement).
 void project_sliding(const BoundaryMotion& boundary, const std::vector<Vector3>& original,
                      std::vector<Vector3>& moved);
+// The same for one node's position (nodes that do not slide keep it).
+void project_sliding(const BoundaryMotion& boundary, const std::vector<Vector3>& original, std::size_t node,
+                     Vector3& position);
 
 }  // namespace mixmesh::deform::detail

@@ -7,6 +7,7 @@
 #include <numeric>
 
 #include "deform/ara_smoothing.hpp"
+#include "deform/rotation.hpp"
 #include "mixmesh/mesh/topology.hpp"
 
 namespace mixmesh::deform::detail {
@@ -122,7 +123,10 @@ UntangleReport untangle(const DualMesh& dual, const BoundaryMotion& boundary,
   parallel_items(cells, [&](std::size_t cell) { invalid[cell] = !cell_valid(dual, cell, moved); });
   report.inverted_before = static_cast<std::size_t>(std::count(invalid.begin(), invalid.end(), 1));
   report.inverted_after = report.inverted_before;
-  if (report.inverted_before == 0) return report;
+  if (report.inverted_before == 0) {
+    report.invalid = std::move(invalid);
+    return report;
+  }
 
   const std::size_t point_count = original.size();
   std::vector<char> ever_moved(point_count, 0);
@@ -138,13 +142,7 @@ UntangleReport untangle(const DualMesh& dual, const BoundaryMotion& boundary,
                                   }),
                    region.end());
       // The cells the region touches, and how many of them are inverted now.
-      std::vector<Index> touched;
-      for (Index node : region)
-        for (std::size_t slot = dual.point_cell_offsets[static_cast<std::size_t>(node)];
-             slot < dual.point_cell_offsets[static_cast<std::size_t>(node) + 1]; ++slot)
-          touched.push_back(dual.point_cells[slot]);
-      std::sort(touched.begin(), touched.end());
-      touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
+      const std::vector<Index> touched = cells_of_nodes(dual, region);
 
       std::vector<std::vector<Index>> stars(region.size());
       for (std::size_t slot = 0; slot < region.size(); ++slot)
@@ -157,10 +155,7 @@ UntangleReport untangle(const DualMesh& dual, const BoundaryMotion& boundary,
         parallel_items(region.size(), [&](std::size_t slot) {
           const std::size_t node = static_cast<std::size_t>(region[slot]);
           next[slot] = affine_position(dual, node, stars[slot], original, moved);
-          if (boundary.roles[node] == NodeRole::sliding) {
-            const Vector3& normal = boundary.slide_normal[node];
-            next[slot] -= (next[slot] - original[node]).dot(normal) * normal;
-          }
+          project_sliding(boundary, original, node, next[slot]);
         });
         for (std::size_t slot = 0; slot < region.size(); ++slot)
           moved[static_cast<std::size_t>(region[slot])] = next[slot];
@@ -226,6 +221,7 @@ UntangleReport untangle(const DualMesh& dual, const BoundaryMotion& boundary,
     report.inverted_after = optimise_inverted(dual, boundary, original, moved, invalid, ever_moved);
   }
   report.moved_nodes = static_cast<std::size_t>(std::count(ever_moved.begin(), ever_moved.end(), 1));
+  report.invalid = std::move(invalid);
   return report;
 }
 

@@ -40,6 +40,7 @@ struct UntangleReport {
   int rounds = 0;
   std::size_t optimise_before = 0;  // inverted cells handed to the optimisation
   std::size_t moved_nodes = 0;
+  std::vector<char> invalid;  // per cell of the dual mesh, after (exact: every change rechecked)
 };
 
 // The nodes joined to `node` by an edge of one of its cells, sorted.
