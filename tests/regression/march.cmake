@@ -10,24 +10,20 @@ set(march_output ${CMAKE_CURRENT_BINARY_DIR}/march_regression)
 file(MAKE_DIRECTORY ${march_output})
 set(march_small --set surface.chordwise_cells=64 --set surface.spanwise_cells=16)
 
-add_test(NAME march_onera_m6_small_without_wake
-         COMMAND $<TARGET_FILE:mixmesh-cli> march ${PROJECT_SOURCE_DIR}/cases/onera_m6.toml ${march_small}
-                 --set surface.wake.enabled=false -o ${march_output}/onera_m6_small_without_wake.vtu)
-set_tests_properties(march_onera_m6_small_without_wake PROPERTIES LABELS regression
-                     FAIL_REGULAR_EXPRESSION "faces stopped at layer" FIXTURES_SETUP march_small_without_wake)
-add_test(NAME march_onera_m6_small_without_wake_check
-         COMMAND ${MIXMESH_PYTHON} ${MIXMESH_CHECK_MESH} ${march_output}/onera_m6_small_without_wake.vtu --no-foam)
-set_tests_properties(march_onera_m6_small_without_wake_check PROPERTIES LABELS regression
-                     FIXTURES_REQUIRED march_small_without_wake)
+# march_checked(NAME OUTPUT ARGS...): `mixmesh march ARGS -o OUTPUT` must finish with no
+# face stopped, and NAME_check judges OUTPUT with the independent checker.
+function(march_checked name output)
+  add_test(NAME ${name} COMMAND $<TARGET_FILE:mixmesh-cli> march ${ARGN} -o ${output})
+  set_tests_properties(${name} PROPERTIES LABELS regression FAIL_REGULAR_EXPRESSION "faces stopped at layer"
+                                          FIXTURES_SETUP ${name})
+  add_test(NAME ${name}_check COMMAND ${MIXMESH_PYTHON} ${MIXMESH_CHECK_MESH} ${output} --no-foam)
+  set_tests_properties(${name}_check PROPERTIES LABELS regression FIXTURES_REQUIRED ${name})
+endfunction()
 
-add_test(NAME march_onera_m6_small
-         COMMAND $<TARGET_FILE:mixmesh-cli> march ${PROJECT_SOURCE_DIR}/cases/onera_m6.toml ${march_small}
-                 --set surface.wake.length=2.0 -o ${march_output}/onera_m6_small_layers.vtu --compare)
-set_tests_properties(march_onera_m6_small PROPERTIES LABELS regression
-                     FAIL_REGULAR_EXPRESSION "faces stopped at layer" FIXTURES_SETUP march_small)
-add_test(NAME march_onera_m6_small_check
-         COMMAND ${MIXMESH_PYTHON} ${MIXMESH_CHECK_MESH} ${march_output}/onera_m6_small_layers.vtu --no-foam)
-set_tests_properties(march_onera_m6_small_check PROPERTIES LABELS regression FIXTURES_REQUIRED march_small)
+march_checked(march_onera_m6_small_without_wake ${march_output}/onera_m6_small_without_wake.vtu
+              ${PROJECT_SOURCE_DIR}/cases/onera_m6.toml ${march_small} --set surface.wake.enabled=false)
+march_checked(march_onera_m6_small ${march_output}/onera_m6_small_layers.vtu
+              ${PROJECT_SOURCE_DIR}/cases/onera_m6.toml ${march_small} --set surface.wake.length=2.0 --compare)
 
 add_test(NAME march_onera_m6_full
          COMMAND $<TARGET_FILE:mixmesh-cli> march ${PROJECT_SOURCE_DIR}/cases/onera_m6.toml
@@ -74,25 +70,11 @@ set_tests_properties(march_wing_wake_end_in_plane_taper_1_check PROPERTIES LABEL
 # join the lines on their own side of the wake sheet: measured along their long edge
 # on the sheet, both came out on one side and the march stopped with "shared by 4 faces
 # on one side".
-add_test(NAME march_cranked_base_with_wake
-         COMMAND $<TARGET_FILE:mixmesh-cli> march ${CMAKE_CURRENT_LIST_DIR}/march_cranked_base.toml
-                 -o ${march_output}/cranked_base.vtu)
-set_tests_properties(march_cranked_base_with_wake PROPERTIES LABELS regression
-                     FAIL_REGULAR_EXPRESSION "faces stopped at layer" FIXTURES_SETUP march_cranked_base)
-add_test(NAME march_cranked_base_with_wake_check
-         COMMAND ${MIXMESH_PYTHON} ${MIXMESH_CHECK_MESH} ${march_output}/cranked_base.vtu --no-foam)
-set_tests_properties(march_cranked_base_with_wake_check PROPERTIES LABELS regression
-                     FIXTURES_REQUIRED march_cranked_base)
+march_checked(march_cranked_base_with_wake ${march_output}/cranked_base.vtu
+              ${CMAKE_CURRENT_LIST_DIR}/march_cranked_base.toml)
 
 # A line that starts below the plane of one of its wall faces takes the direction that
 # sees them all (in the symmetry plane for a line there): the swept sharp trailing
 # edge's line on the plane leaned under the upper surface's last face.
-add_test(NAME march_swept_sharp_edge_on_the_plane
-         COMMAND $<TARGET_FILE:mixmesh-cli> march ${CMAKE_CURRENT_LIST_DIR}/march_swept_sharp_edge.toml
-                 -o ${march_output}/swept_sharp_edge.vtu)
-set_tests_properties(march_swept_sharp_edge_on_the_plane PROPERTIES LABELS regression
-                     FAIL_REGULAR_EXPRESSION "faces stopped at layer" FIXTURES_SETUP march_swept_sharp_edge)
-add_test(NAME march_swept_sharp_edge_on_the_plane_check
-         COMMAND ${MIXMESH_PYTHON} ${MIXMESH_CHECK_MESH} ${march_output}/swept_sharp_edge.vtu --no-foam)
-set_tests_properties(march_swept_sharp_edge_on_the_plane_check PROPERTIES LABELS regression
-                     FIXTURES_REQUIRED march_swept_sharp_edge)
+march_checked(march_swept_sharp_edge_on_the_plane ${march_output}/swept_sharp_edge.vtu
+              ${CMAKE_CURRENT_LIST_DIR}/march_swept_sharp_edge.toml)
