@@ -86,24 +86,11 @@ WallLines detail::wall_lines(const MixedMesh& mesh, const DualMesh& dual,
       best_end[at] = to;
     }
   };
-  for (std::size_t cell = 0; cell < dual.cell_count(); ++cell) {
-    const Index* nodes = dual.nodes(cell);
-    const int kind = dual.cell_kind[cell];
-    if (kind >= detail::planar_triangle) {
-      const int count = dual.cell_size(cell);
-      for (int local = 0; local < count; ++local) {
-        consider(nodes[local], nodes[(local + 1) % count]);
-        consider(nodes[(local + 1) % count], nodes[local]);
-      }
-      continue;
-    }
-    const CellDescriptor& cell_descriptor = descriptor(static_cast<CellType>(kind));
-    for (int edge = 0; edge < cell_descriptor.edge_count; ++edge) {
-      const auto& ends = cell_descriptor.edges[static_cast<std::size_t>(edge)];
-      consider(nodes[ends[0]], nodes[ends[1]]);
-      consider(nodes[ends[1]], nodes[ends[0]]);
-    }
-  }
+  for (std::size_t cell = 0; cell < dual.cell_count(); ++cell)
+    detail::for_each_cell_edge(dual, cell, [&](Index from, Index to) {
+      consider(from, to);
+      consider(to, from);
+    });
   for (std::size_t node = 0; node < mesh.points.size(); ++node) {
     if (!on_wall[node]) continue;
     lines.wall_nodes.push_back(static_cast<Index>(node));

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "mixmesh/mesh/mixed_mesh.hpp"
+#include "mixmesh/mesh/topology.hpp"
 
 namespace mixmesh::deform::detail {
 
@@ -66,6 +67,23 @@ double cell_measure(const DualMesh& dual, std::size_t cell, const std::vector<Ve
 // Positive volume and no tangled corner (volume: mixmesh::cell_shape; planar: positive
 // area and every corner turning counter-clockwise).
 bool cell_valid(const DualMesh& dual, std::size_t cell, const std::vector<Vector3>& points);
+// Calls edge(from, to) for every edge of a cell: the sides of a planar cell in order,
+// the descriptor's edges of a volume cell.
+template <class Edge>
+void for_each_cell_edge(const DualMesh& dual, std::size_t cell, Edge&& edge) {
+  const Index* nodes = dual.nodes(cell);
+  const int kind = dual.cell_kind[cell];
+  if (kind >= planar_triangle) {
+    const int count = dual.cell_size(cell);
+    for (int corner = 0; corner < count; ++corner) edge(nodes[corner], nodes[(corner + 1) % count]);
+    return;
+  }
+  const CellDescriptor& type = descriptor(static_cast<CellType>(kind));
+  for (int k = 0; k < type.edge_count; ++k)
+    edge(nodes[type.edges[static_cast<std::size_t>(k)][0]],
+         nodes[type.edges[static_cast<std::size_t>(k)][1]]);
+}
+
 // The cells using any of `nodes`, sorted, each once.
 std::vector<Index> cells_of_nodes(const DualMesh& dual, const std::vector<Index>& nodes);
 // "hexahedron", "quad", …

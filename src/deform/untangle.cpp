@@ -15,29 +15,17 @@ namespace mixmesh::deform::detail {
 void edge_neighbours(const DualMesh& dual, std::size_t node, std::vector<Index>& out) {
   out.clear();
   for (std::size_t slot = dual.point_cell_offsets[node]; slot < dual.point_cell_offsets[node + 1]; ++slot) {
-    const std::size_t cell = static_cast<std::size_t>(dual.point_cells[slot]);
-    const Index* nodes = dual.nodes(cell);
-    const int count = dual.cell_size(cell);
-    const int kind = dual.cell_kind[cell];
-    auto add_edge = [&](int from, int to) {
-      if (nodes[from] == static_cast<Index>(node)) out.push_back(nodes[to]);
-      if (nodes[to] == static_cast<Index>(node)) out.push_back(nodes[from]);
-    };
-    if (kind >= planar_triangle) {
-      for (int corner = 0; corner < count; ++corner) add_edge(corner, (corner + 1) % count);
-    } else {
-      const CellDescriptor& type = descriptor(static_cast<CellType>(kind));
-      for (int edge = 0; edge < type.edge_count; ++edge)
-        add_edge(type.edges[static_cast<std::size_t>(edge)][0],
-                 type.edges[static_cast<std::size_t>(edge)][1]);
-    }
+    for_each_cell_edge(dual, static_cast<std::size_t>(dual.point_cells[slot]), [&](Index from, Index to) {
+      if (from == static_cast<Index>(node)) out.push_back(to);
+      if (to == static_cast<Index>(node)) out.push_back(from);
+    });
   }
   std::sort(out.begin(), out.end());
   out.erase(std::unique(out.begin(), out.end()), out.end());
 }
 
 std::vector<Index> inverted_region(const DualMesh& dual, const std::vector<char>& invalid, int rings) {
-  std::vector<char> taken(dual.point_cell_offsets.size() - 1, 0);
+  std::vector<char> taken(dual.point_count, 0);
   std::vector<Index> region, neighbours;
   for (std::size_t cell = 0; cell < invalid.size(); ++cell) {
     if (!invalid[cell]) continue;
