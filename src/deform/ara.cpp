@@ -5,6 +5,8 @@
 // motion-dependent work.
 #include "mixmesh/deform/ara.hpp"
 
+#include <Eigen/Eigenvalues>
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -64,16 +66,38 @@ void pseudo_laplacian_weights(const Vector3& node, const Index* cells, std::size
     first += offset;
     second += offset * offset.transpose();
   }
+  // The directions the weights are fitted in: all three, but not one in which the
+  // centres do not spread (their covariance has no extent there). In such a direction
+  // every centre lies at the same offset h, λ's component there is −1/h and every weight
+  // is 1 − 1 up to rounding: noise, clipped to [0, 2]. That is every node of a
+  // one-cell-thick quasi-2D mesh (its cells' centres lie half a cell from both planes)
+  // and a sliding node whose cells are one equal-width row beside the plane; their
+  // weights then come from the directions the centres do spread in, as in 2D.
+  Eigen::Matrix3d kept = Eigen::Matrix3d::Identity();
   if (planar) {  // no z extent: solve the 2×2 system
+    kept(2, 2) = 0.0;
+  } else if (count > 0) {
+    const Eigen::Matrix3d spread = second - first * first.transpose() / static_cast<double>(count);
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> axes;
+    axes.computeDirect(spread);
+    const double largest = axes.eigenvalues().maxCoeff();
+    for (int axis = 0; axis < 3; ++axis)
+      if (!(axes.eigenvalues()(axis) > 1e-6 * largest))
+        kept -= axes.eigenvectors().col(axis) * axes.eigenvectors().col(axis).transpose();
+  }
+  if (planar) {
     second(2, 2) = 1.0;
     second(0, 2) = second(2, 0) = second(1, 2) = second(2, 1) = 0.0;
     first.z() = 0.0;
+  } else {
+    second = kept * second * kept + (Eigen::Matrix3d::Identity() - kept);
+    first = kept * first;
   }
   Vector3 lambda = Vector3::Zero();
   const Eigen::FullPivLU<Eigen::Matrix3d> solver(second);
   if (solver.isInvertible()) lambda = -solver.solve(first);
   for (std::size_t slot = 0; slot < count; ++slot) {
-    const Vector3 offset = centres[static_cast<std::size_t>(cells[slot])] - node;
+    const Vector3 offset = kept * (centres[static_cast<std::size_t>(cells[slot])] - node);
     weights[slot] = std::clamp(1.0 + lambda.dot(offset), 0.0, 2.0);
   }
 }

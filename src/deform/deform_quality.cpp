@@ -49,12 +49,15 @@ WallLines detail::wall_lines(const MixedMesh& mesh, const DualMesh& dual,
   WallLines lines;
   lines.face_offsets.push_back(0);
   std::vector<char> on_wall(mesh.points.size(), 0);
+  // A line may not end on a wall or far-field face, but may on a sliding plane: the
+  // grid lines of a wall node on a symmetry plane run in it, and in a one-cell-thick
+  // quasi-2D mesh every node is on one of its two planes.
   std::vector<char> on_boundary(mesh.points.size(), 0);
   for (std::size_t face = 0; face < dual.face_count(); ++face) {
+    if (!is_wall(marker_roles, dual.face_marker[face])) continue;
     const Index* nodes = dual.boundary_nodes(face);
     const int count = dual.face_size(face);
     for (int local = 0; local < count; ++local) on_boundary[static_cast<std::size_t>(nodes[local])] = 1;
-    if (!is_wall(marker_roles, dual.face_marker[face])) continue;
     std::vector<Index> ordered(nodes, nodes + count);
     const Vector3 inward =
         detail::cell_centre(dual, static_cast<std::size_t>(dual.face_cell[face]), mesh.points) -

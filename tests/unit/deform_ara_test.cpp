@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 
@@ -99,6 +100,57 @@ TEST(DeformAra, RotationTermsKeepWallLinesOrthogonalWhereTranslationOnlySkewsThe
   AraMethod plain(plain_options);
   const DeformResult plain_result = deform_step(mesh, mesh, motion, 1, plain, quiet);
   EXPECT_GT(plain_result.max_wall_angle_change, rotated.max_wall_angle_change);
+}
+
+// A quasi-2D viscous mesh, one cell thick between two sliding planes (hexahedra in
+// the layers, prisms outside, first spacing 1e-5 of the chord), deforms as its planar
+// section does. Before, every node's interpolation weights were noise: the centres of a
+// one-cell-thick mesh's cells all lie half a cell from either plane, so the pseudo-
+// Laplacian's λ along z cancelled every weight up to rounding; the two planes then moved
+// apart by up to 0.37 chords and the smallest scaled Jacobian at 20° was 0.088 against
+// the planar mesh's 0.452. And no wall line was found, since every node lies on a plane.
+TEST(DeformAra, OneCellThickMeshDeformsAsItsPlanarSection) {
+  OGrid grid;
+  grid.around = 64;
+  grid.outward = 28;
+  grid.first_spacing = 2e-5;  // the ellipse's chord is 2
+  grid.quad_layers = 16;
+  grid.layers_z = 1;
+  grid.height = 0.05;
+  const MixedMesh planar = testing::planar_o_grid(grid);
+  const MixedMesh slab = testing::volume_o_grid(grid, VolumeKind::hex_and_prism);
+  for (double angle : {20.0, 90.0}) {
+    Motion motion = rotate_wall(angle, Vector3(-0.5, 0.0, 0.0));
+    AraMethod planar_method;
+    const DeformResult section = deform_step(planar, planar, motion, 1, planar_method, quiet);
+    motion.symmetry = {"bottom", "top"};
+    AraMethod slab_method;
+    const DeformResult deformed = deform_step(slab, slab, motion, 1, slab_method, quiet);
+    ASSERT_TRUE(section.valid) << angle;
+    ASSERT_TRUE(deformed.valid) << angle;
+    // Both planes move alike, and as the section does up to the smoothing's tolerance.
+    const std::size_t count = planar.points.size();
+    double between_planes = 0.0, from_section = 0.0;
+    for (std::size_t node = 0; node < count; ++node) {
+      const Vector3& bottom = deformed.mesh.points[node];
+      const Vector3& top = deformed.mesh.points[count + node];
+      between_planes = std::max(between_planes, (bottom.head<2>() - top.head<2>()).norm());
+      from_section = std::max(from_section, (bottom.head<2>() - section.mesh.points[node].head<2>()).norm());
+      EXPECT_DOUBLE_EQ(bottom.z(), slab.points[node].z());
+      EXPECT_DOUBLE_EQ(top.z(), slab.points[count + node].z());
+    }
+    std::printf("%g deg: planes %.3g apart, %.3g from the section; min s.J. %.6f / %.6f; wall-line change %.4f / %.4f deg\n",
+                angle, between_planes, from_section, deformed.after.min_scaled_jacobian, section.after.min_scaled_jacobian,
+                deformed.max_wall_angle_change, section.max_wall_angle_change);
+    EXPECT_LT(between_planes, 1e-9) << angle;
+    EXPECT_LT(from_section, 1e-3) << angle;
+    EXPECT_GT(deformed.after.min_scaled_jacobian, 0.98 * section.after.min_scaled_jacobian) << angle;
+    // Wall lines are found on both planes (their angles as in the section) and stay at
+    // the wall normal as the section's do.
+    EXPECT_NEAR(deformed.before.max_wall_angle, section.before.max_wall_angle, 1e-9) << angle;
+    EXPECT_LT(deformed.max_wall_angle_change, 2.0) << angle;
+    EXPECT_GT(section.max_wall_angle_change, 0.0);
+  }
 }
 
 TEST(DeformAra, UniformTranslationOfEveryBoundaryTranslatesTheWholeMesh) {
