@@ -8,7 +8,12 @@ bend_twist_mode.csv, a bending + twist mode shape on the wing nodes
 ("x,y,z,dx,dy,dz": plunge 0.15 (z/span)^2, twist 6 deg (z/span) nose up about
 the quarter chord).
 
-    ./make_wing.py [--span-layers 12] [--span 3]
+    ./make_wing.py [--span-layers 12] [--span 3] [--wall-spacing 0.002] [--output wing.msh]
+                   [--mode bend_twist_mode.csv]
+
+The quasi-2D viscous case (one cell thick, first layer 1e-5 chords, no mode file):
+
+    ./make_wing.py --span-layers 1 --span 0.05 --wall-spacing 1e-5 --output quasi2d.msh --mode ""
 """
 import argparse
 import math
@@ -20,11 +25,18 @@ import meshio
 import numpy
 
 
-def section_mesh(folder):
+def section_mesh(folder, wall_spacing):
     with tempfile.TemporaryDirectory() as scratch:
+        # The section's first layer height is the geo file's hwall_n, replaced here.
+        text = (folder / "wing_section.geo").read_text()
+        marker = "Field[1].hwall_n = "
+        start = text.index(marker) + len(marker)
+        text = text[:start] + repr(wall_spacing) + text[text.index(";", start):]
+        source = pathlib.Path(scratch) / "section.geo"
+        source.write_text(text)
         target = pathlib.Path(scratch) / "section.msh"
-        subprocess.run(["gmsh", "-2", str(folder / "wing_section.geo"), "-format", "msh22",
-                        "-o", str(target)], check=True, capture_output=True)
+        subprocess.run(["gmsh", "-2", str(source), "-format", "msh22", "-o", str(target)],
+                       check=True, capture_output=True)
         return meshio.read(target)
 
 
@@ -32,10 +44,14 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--span", type=float, default=3.0)
     parser.add_argument("--span-layers", type=int, default=12)
+    parser.add_argument("--wall-spacing", type=float, default=0.002,
+                        help="first layer height of the section (chords)")
     parser.add_argument("--output", default="wing.msh")
+    parser.add_argument("--mode", default="bend_twist_mode.csv",
+                        help="mode file to write; empty: none")
     arguments = parser.parse_args()
     folder = pathlib.Path(__file__).resolve().parent
-    section = section_mesh(folder)
+    section = section_mesh(folder, arguments.wall_spacing)
 
     # Planar cells and the marked boundary lines of the section.
     names = {int(tag): name for name, (tag, _) in section.field_data.items()}
@@ -99,16 +115,18 @@ def main():
         stream.write("$EndElements\n")
 
     # Bending + twist mode on the wing surface nodes.
-    wing_nodes = sorted({n for kind, name, nodes in elements if name == "airfoil" for n in nodes})
-    with open(folder / "bend_twist_mode.csv", "w") as stream:
-        stream.write("x,y,z,dx,dy,dz\n")
-        for node in wing_nodes:
-            x, y, zz = points[node]
-            fraction = zz / arguments.span
-            twist = math.radians(6.0) * fraction
-            dx = 0.25 + (x - 0.25) * math.cos(twist) + y * math.sin(twist) - x
-            dy = -(x - 0.25) * math.sin(twist) + y * math.cos(twist) - y + 0.15 * fraction ** 2
-            stream.write("%.17g,%.17g,%.17g,%.17g,%.17g,0\n" % (x, y, zz, dx, dy))
+    wing_nodes = []
+    if arguments.mode:
+        wing_nodes = sorted({n for kind, name, nodes in elements if name == "airfoil" for n in nodes})
+        with open(folder / arguments.mode, "w") as stream:
+            stream.write("x,y,z,dx,dy,dz\n")
+            for node in wing_nodes:
+                x, y, zz = points[node]
+                fraction = zz / arguments.span
+                twist = math.radians(6.0) * fraction
+                dx = 0.25 + (x - 0.25) * math.cos(twist) + y * math.sin(twist) - x
+                dy = -(x - 0.25) * math.sin(twist) + y * math.cos(twist) - y + 0.15 * fraction ** 2
+                stream.write("%.17g,%.17g,%.17g,%.17g,%.17g,0\n" % (x, y, zz, dx, dy))
     print("%s: %d points, %d hexahedra, %d prisms; %d mode rows" %
           (output.name, len(points), layers * len(quads), layers * len(triangles), len(wing_nodes)))
 

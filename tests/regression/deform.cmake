@@ -37,6 +37,20 @@ add_test(NAME deform_wing_bend_twist_check
          COMMAND ${MIXMESH_PYTHON} ${MIXMESH_CHECK_MESH} --no-foam -q ${deform_output}/wing_bend_twist.vtu)
 set_tests_properties(deform_wing_bend_twist_check PROPERTIES LABELS regression DEPENDS deform_wing_bend_twist)
 
+# The quasi-2D viscous NACA 0012 (one cell thick between sliding planes, first layer
+# 1e-5 chords) pitched 90° in one step with ARA: valid by the independent checker
+# including checkMesh, and the wall-normal lines turn with the airfoil to within 2°
+# (they are found on the planes).
+add_test(NAME deform_quasi2d_pitch
+         COMMAND mixmesh-cli deform ${wing_case}/quasi2d.msh --motion ${wing_case}/quasi2d_pitch.toml
+                 -o ${deform_output}/quasi2d_pitched.vtu)
+set_tests_properties(deform_quasi2d_pitch PROPERTIES LABELS regression FIXTURES_SETUP quasi2d_pitched
+  PASS_REGULAR_EXPRESSION "step 1: wall-line angle change: moving walls [01]\\.[0-9]+ deg"
+  FAIL_REGULAR_EXPRESSION "error|INVALID|moving walls 0\\.000 deg")
+add_test(NAME deform_quasi2d_pitch_check
+         COMMAND ${MIXMESH_PYTHON} ${MIXMESH_CHECK_MESH} -q ${deform_output}/quasi2d_pitched.vtu)
+set_tests_properties(deform_quasi2d_pitch_check PROPERTIES LABELS regression FIXTURES_REQUIRED quasi2d_pitched)
+
 # Bad input fails with one line and writes nothing.
 add_test(NAME deform_rejects_unknown_marker
          COMMAND mixmesh-cli deform ${naca_case}/naca0012.msh --motion ${CMAKE_CURRENT_LIST_DIR}/deform_unknown_marker.toml
