@@ -51,6 +51,23 @@ add_test(NAME deform_quasi2d_pitch_check
          COMMAND ${MIXMESH_PYTHON} ${MIXMESH_CHECK_MESH} -q ${deform_output}/quasi2d_pitched.vtu)
 set_tests_properties(deform_quasi2d_pitch_check PROPERTIES LABELS regression FIXTURES_REQUIRED quasi2d_pitched)
 
+# A structured C-mesh of the NACA 0012 with its wake cut, first cell 1e-5 chords, one
+# hexahedron thick (cases/cmesh/make_cmesh.py, made here): pitched 45° with ARA and 90°
+# with IDW in one step, each valid by the independent checker including checkMesh.
+add_test(NAME deform_cmesh_make
+         COMMAND ${MIXMESH_PYTHON} ${PROJECT_SOURCE_DIR}/cases/cmesh/make_cmesh.py --output ${deform_output}/cmesh.msh)
+set_tests_properties(deform_cmesh_make PROPERTIES LABELS regression FIXTURES_SETUP cmesh)
+foreach(method ara idw)
+  add_test(NAME deform_cmesh_pitch_${method}
+           COMMAND mixmesh-cli deform ${deform_output}/cmesh.msh --motion ${PROJECT_SOURCE_DIR}/cases/cmesh/pitch_${method}.toml
+                   -o ${deform_output}/cmesh_pitched_${method}.vtu)
+  set_tests_properties(deform_cmesh_pitch_${method} PROPERTIES LABELS regression FIXTURES_REQUIRED cmesh
+    FIXTURES_SETUP cmesh_${method} FAIL_REGULAR_EXPRESSION "error|INVALID")
+  add_test(NAME deform_cmesh_pitch_${method}_check
+           COMMAND ${MIXMESH_PYTHON} ${MIXMESH_CHECK_MESH} -q ${deform_output}/cmesh_pitched_${method}.vtu)
+  set_tests_properties(deform_cmesh_pitch_${method}_check PROPERTIES LABELS regression FIXTURES_REQUIRED cmesh_${method})
+endforeach()
+
 # Bad input fails with one line and writes nothing.
 add_test(NAME deform_rejects_unknown_marker
          COMMAND mixmesh-cli deform ${naca_case}/naca0012.msh --motion ${CMAKE_CURRENT_LIST_DIR}/deform_unknown_marker.toml
