@@ -121,3 +121,26 @@ foreach(method ara idw)
   set_tests_properties(deform_onera_m6_motions_check_bend_${method} PROPERTIES LABELS "regression;heavy"
                        FIXTURES_REQUIRED deform_onera_m6_bend_${method} PASS_REGULAR_EXPRESSION "\nVALID")
 endforeach()
+
+# The ONERA M6 in a pitch–plunge cycle (cases/pipeline/onera_m6_pitch_plunge.toml:
+# ±10°, ±0.5 root chord, 8 steps each from the generated mesh, IDW and ARA); the
+# independent checker judges the four extreme steps of each method. Heavy: about two
+# minutes for the generation and the 16 steps.
+set(m6_pitch_plunge_output ${CMAKE_CURRENT_BINARY_DIR}/deform_onera_m6_pitch_plunge)
+add_test(NAME deform_onera_m6_pitch_plunge
+         COMMAND mixmesh-cli generate ${PROJECT_SOURCE_DIR}/cases/pipeline/onera_m6_pitch_plunge.toml
+                 --output-dir ${m6_pitch_plunge_output})
+set_tests_properties(deform_onera_m6_pitch_plunge PROPERTIES LABELS "regression;heavy"
+                     FIXTURES_SETUP deform_onera_m6_pitch_plunge
+                     PASS_REGULAR_EXPRESSION "wrote [^\n]*onera_m6_pitch_plunge_ara_0008.vtu"
+                     FAIL_REGULAR_EXPRESSION "mixmesh: error|INVALID")
+foreach(method idw ara)
+  foreach(step 0002 0004 0006 0008)
+    add_test(NAME deform_onera_m6_pitch_plunge_check_${method}_${step}
+             COMMAND ${MIXMESH_PYTHON} ${MIXMESH_CHECK_MESH} --no-foam -q
+                     ${m6_pitch_plunge_output}/onera_m6_pitch_plunge_${method}_${step}.vtu)
+    set_tests_properties(deform_onera_m6_pitch_plunge_check_${method}_${step} PROPERTIES
+                         LABELS "regression;heavy" FIXTURES_REQUIRED deform_onera_m6_pitch_plunge
+                         PASS_REGULAR_EXPRESSION "\nVALID")
+  endforeach()
+endforeach()
