@@ -108,13 +108,14 @@ namespace {
 
 std::shared_ptr<detail::AraGeometry> prepare_geometry(const MixedMesh& mesh,
                                                       const std::vector<MarkerRole>& marker_roles,
-                                                      std::uint64_t connectivity, std::uint64_t point_bits) {
+                                                      std::uint64_t connectivity, std::uint64_t point_bits,
+                                                      const DualMesh* offered_dual) {
   auto geometry = std::make_shared<detail::AraGeometry>();
   detail::AraGeometry& entry = *geometry;
   entry.connectivity = connectivity;
   entry.points = point_bits;
   entry.marker_roles = marker_roles;
-  entry.dual = detail::build_dual_mesh(mesh);
+  entry.dual = offered_dual ? *offered_dual : detail::build_dual_mesh(mesh);
   entry.walls = detail::wall_faces(entry.dual, marker_roles);
   if (entry.walls.faces.empty()) throw Error("ara: the mesh has no wall boundary (every marker slides)");
   entry.nearest_key = detail::combine_hash(connectivity, entry.walls.faces);
@@ -182,7 +183,8 @@ std::vector<Vector3> AraMethod::move(const MixedMesh& mesh, const BoundaryMotion
       log.detail("ara: geometry " + (geometry_ ? "read from " + options_.cache_file.string()
                                                : "rebuilt (" + stored.why_not + ")"));
     }
-    if (!geometry_) geometry_ = prepare_geometry(mesh, boundary.marker_roles, connectivity, point_bits);
+    if (!geometry_)
+      geometry_ = prepare_geometry(mesh, boundary.marker_roles, connectivity, point_bits, offered_dual_);
   }
   const detail::AraGeometry& geometry = *geometry_;
   const DualMesh& dual = geometry.dual;

@@ -65,7 +65,15 @@ DeformResult step_from(const MixedMesh& mesh, const MixedMesh& reference, const 
     seconds += measured->layer_seconds;
   }
   clock = Stopwatch();
-  std::vector<Vector3> points = method.move(mesh, boundary, log);
+  method.offer_dual_mesh(&measured->dual);
+  std::vector<Vector3> points;
+  try {
+    points = method.move(mesh, boundary, log);
+  } catch (...) {
+    method.offer_dual_mesh(nullptr);
+    throw;
+  }
+  method.offer_dual_mesh(nullptr);
   if (points.size() != mesh.points.size())
     throw Error(method.name() + ": returned " + std::to_string(points.size()) + " points for " +
                 std::to_string(mesh.points.size()));

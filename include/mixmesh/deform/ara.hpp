@@ -129,6 +129,7 @@ class AraMethod : public DeformationMethod {
   explicit AraMethod(AraOptions options = {}) : options_(std::move(options)) {}
   std::string name() const override { return "ara"; }
   std::vector<Vector3> move(const MixedMesh& mesh, const BoundaryMotion& boundary, const Log& log) override;
+  void offer_dual_mesh(const detail::DualMesh* dual) override { offered_dual_ = dual; }
 
   const AraReport& last_report() const { return report_; }
   const NearestFaces& nearest_faces() const { return nearest_; }
@@ -144,6 +145,7 @@ class AraMethod : public DeformationMethod {
   // What depends only on the undeformed mesh and its markers' roles (dual mesh, wall
   // faces, smoothing stencil, interpolation weights), reused while they stay the same.
   std::shared_ptr<detail::AraGeometry> geometry_;
+  const detail::DualMesh* offered_dual_ = nullptr;  // copied into a new geometry
   AraReport report_;
 };
 
