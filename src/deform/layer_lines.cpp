@@ -205,11 +205,16 @@ LayerLines find_layer_lines(const DualMesh& dual, const std::vector<MarkerRole>&
     add_star(entry);
     const std::size_t cell = static_cast<std::size_t>(dual.face_cell[face]);
     if (!is_layer_cell(dual, cell, entry.count)) continue;
-    if (walk_column(dual, cell, entry, steps, column_cells, stamp, ++walk) == ColumnEnd::boundary) {
+    const ColumnEnd end = walk_column(dual, cell, entry, steps, column_cells, stamp, ++walk);
+    // A column that reaches a boundary is a structured block's (a C- or O-grid): its
+    // cells are no sheet's either. Left unmarked, every face of such a block next to a
+    // wall edge seeded a sheet that grew over the whole block, and each of its faces
+    // walked two more columns to the boundary (a 1 M-node O-grid: a minute).
+    for (Index member : column_cells) in_wall_column[static_cast<std::size_t>(member)] = 1;
+    if (end == ColumnEnd::boundary) {
       ++lines.columns_to_boundary;
       continue;
     }
-    for (Index member : column_cells) in_wall_column[static_cast<std::size_t>(member)] = 1;
     commit(steps);
     ++lines.wall_columns;
   }
