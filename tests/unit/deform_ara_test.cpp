@@ -139,9 +139,11 @@ TEST(DeformAra, OneCellThickMeshDeformsAsItsPlanarSection) {
       EXPECT_DOUBLE_EQ(bottom.z(), slab.points[node].z());
       EXPECT_DOUBLE_EQ(top.z(), slab.points[count + node].z());
     }
-    std::printf("%g deg: planes %.3g apart, %.3g from the section; min s.J. %.6f / %.6f; wall-line change %.4f / %.4f deg\n",
-                angle, between_planes, from_section, deformed.after.min_scaled_jacobian, section.after.min_scaled_jacobian,
-                deformed.max_wall_angle_change, section.max_wall_angle_change);
+    std::printf(
+        "%g deg: planes %.3g apart, %.3g from the section; min s.J. %.6f / %.6f; wall-line change %.4f / "
+        "%.4f deg\n",
+        angle, between_planes, from_section, deformed.after.min_scaled_jacobian,
+        section.after.min_scaled_jacobian, deformed.max_wall_angle_change, section.max_wall_angle_change);
     EXPECT_LT(between_planes, 1e-9) << angle;
     EXPECT_LT(from_section, 1e-3) << angle;
     EXPECT_GT(deformed.after.min_scaled_jacobian, 0.98 * section.after.min_scaled_jacobian) << angle;
