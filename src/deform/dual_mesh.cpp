@@ -258,7 +258,8 @@ std::vector<Index> cells_of_nodes(const DualMesh& dual, const std::vector<Index>
 bool cell_valid(const DualMesh& dual, std::size_t cell, const std::vector<Vector3>& points) {
   const int kind = dual.cell_kind[cell];
   if (kind < planar_triangle)
-    return cell_shape(static_cast<CellType>(kind), points, dual.nodes(cell)).valid();
+    return cell_shape(static_cast<CellType>(kind), points, dual.nodes(cell)).valid() &&
+           inverted_face_pyramids(static_cast<CellType>(kind), points, dual.nodes(cell)) == 0;
   if (planar_area(dual, cell, points) <= 0.0) return false;
   const Index* nodes = dual.nodes(cell);
   const int count = dual.cell_size(cell);

@@ -23,6 +23,49 @@ Vector3 face_area_vector(const std::vector<Vector3>& points, const Index* nodes,
   return 0.5 * normal;
 }
 
+int inverted_face_pyramids(CellType type, const std::vector<Vector3>& points, const Index* nodes) {
+  // A tetrahedron's centroid (which the construction below gives exactly) lies inside
+  // it whenever its volume is positive.
+  if (type == CellType::tetrahedron) return 0;
+  const CellDescriptor& cell = descriptor(type);
+  auto at = [&](int local) -> const Vector3& { return points[static_cast<std::size_t>(nodes[local])]; };
+  std::array<Vector3, 6> face_centres, face_areas;  // outward area vectors (faces wind outward)
+  Vector3 estimate = Vector3::Zero();
+  for (int face = 0; face < cell.face_count; ++face) {
+    const LocalFace& local = cell.faces[face];
+    Vector3 average = Vector3::Zero();
+    for (int corner = 0; corner < local.node_count; ++corner) average += at(local.nodes[corner]);
+    average /= local.node_count;
+    Vector3 area = Vector3::Zero(), weighted = Vector3::Zero();
+    double total = 0.0;
+    for (int corner = 0; corner < local.node_count; ++corner) {
+      const Vector3& from = at(local.nodes[corner]);
+      const Vector3& to = at(local.nodes[(corner + 1) % local.node_count]);
+      const Vector3 normal = (to - from).cross(average - from);
+      const double magnitude = normal.norm();
+      area += normal;
+      weighted += magnitude * (from + to + average);
+      total += magnitude;
+    }
+    face_areas[face] = 0.5 * area;
+    face_centres[face] = total > 0.0 ? Vector3(weighted / (3.0 * total)) : average;
+    estimate += face_centres[face];
+  }
+  estimate /= cell.face_count;
+  Vector3 centroid = Vector3::Zero();
+  double volume = 0.0;
+  for (int face = 0; face < cell.face_count; ++face) {
+    const double pyramid = std::max(face_areas[face].dot(face_centres[face] - estimate), 1e-300);
+    centroid += pyramid * (0.75 * face_centres[face] + 0.25 * estimate);
+    volume += pyramid;
+  }
+  centroid /= volume;
+  int inverted = 0;
+  for (int face = 0; face < cell.face_count; ++face)
+    inverted += !(face_areas[face].dot(face_centres[face] - centroid) > 0.0);
+  return inverted;
+}
+
 CellShape cell_shape(CellType type, const std::vector<Vector3>& points, const Index* nodes) {
   const CellDescriptor& cell = descriptor(type);
   auto at = [&](int local) -> const Vector3& { return points[static_cast<std::size_t>(nodes[local])]; };

@@ -126,7 +126,8 @@ ValidityReport validate_volume(const MixedMesh& mesh, const FaceConnectivity& fa
   report.points = mesh.points.size();
   Finding non_positive = make_finding("non_positive_volume", "cells with non-positive volume");
   Finding tangled =
-      make_finding("tangled_cells", "cells with positive volume but a negative corner or sub-tetrahedron");
+      make_finding("tangled_cells",
+                   "cells with positive volume but a negative corner, sub-tetrahedron or face pyramid");
   std::vector<char> used(mesh.points.size(), 0);
   for (CellType type : all_cell_types) {
     const std::size_t count = mesh.cell_count(type);
@@ -142,7 +143,7 @@ ValidityReport validate_volume(const MixedMesh& mesh, const FaceConnectivity& fa
           verdict[cell] = 3;
         else if (shape.volume <= 0.0)
           verdict[cell] = 1;
-        else if (!shape.valid())
+        else if (!shape.valid() || inverted_face_pyramids(type, mesh.points, mesh.cell(type, cell)) > 0)
           verdict[cell] = 2;
       }
     });

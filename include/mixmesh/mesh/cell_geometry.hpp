@@ -47,4 +47,12 @@ Vector3 face_area_vector(const std::vector<Vector3>& points, const Index* nodes,
 
 Vector3 cell_centre(CellType type, const std::vector<Vector3>& points, const Index* nodes);
 
+// Faces of the cell whose pyramid on the cell's centroid is not positive, as OpenFOAM's
+// checkMesh judges them ("face pyramids incorrectly oriented", a hard error): face centres
+// from the triangle fan about the face's vertex average, the centroid from the faces'
+// pyramids about the average of the face centres. A very thin cell with warped faces
+// (a layer cell a micrometre thick whose nodes a deformation moved apart) can fail this
+// while every corner and sub-tetrahedron of cell_shape is positive.
+int inverted_face_pyramids(CellType type, const std::vector<Vector3>& points, const Index* nodes);
+
 }  // namespace mixmesh
