@@ -13,7 +13,8 @@ add_test(NAME compare_cut_picture
 add_test(NAME compare_cut_picture_check
          COMMAND ${MIXMESH_PYTHON} ${compare_check} ${compare_output}/mixed_block_cut.png --size 1200x700
                  --cell-types hexahedron wedge tetra pyramid)
-set_tests_properties(compare_cut_picture_check PROPERTIES DEPENDS compare_cut_picture)
+set_property(TEST compare_cut_picture APPEND PROPERTY FIXTURES_SETUP compare_cut_picture)
+set_tests_properties(compare_cut_picture_check PROPERTIES FIXTURES_REQUIRED compare_cut_picture)
 
 # A cut through the prism half only: no hexahedron or pyramid colour may appear.
 add_test(NAME compare_cut_picture_window
@@ -23,14 +24,16 @@ add_test(NAME compare_cut_picture_window
 add_test(NAME compare_cut_picture_window_check
          COMMAND ${MIXMESH_PYTHON} ${compare_check} ${compare_output}/mixed_block_cut_x.png --size 800x600
                  --cell-types wedge tetra --absent-cell-types hexahedron pyramid)
-set_tests_properties(compare_cut_picture_window_check PROPERTIES DEPENDS compare_cut_picture_window)
+set_property(TEST compare_cut_picture_window APPEND PROPERTY FIXTURES_SETUP compare_cut_picture_window)
+set_tests_properties(compare_cut_picture_window_check PROPERTIES FIXTURES_REQUIRED compare_cut_picture_window)
 
 add_test(NAME compare_bar_chart
          COMMAND ${MIXMESH_PYTHON} ${PROJECT_SOURCE_DIR}/scripts/plot-compare.py
                  ${CMAKE_CURRENT_LIST_DIR}/compare/wild_table1.csv --size 1400x600 -o ${compare_output}/bars.png)
 add_test(NAME compare_bar_chart_check
          COMMAND ${MIXMESH_PYTHON} ${compare_check} ${compare_output}/bars.png --size 1400x600)
-set_tests_properties(compare_bar_chart_check PROPERTIES DEPENDS compare_bar_chart)
+set_property(TEST compare_bar_chart APPEND PROPERTY FIXTURES_SETUP compare_bar_chart)
+set_tests_properties(compare_bar_chart_check PROPERTIES FIXTURES_REQUIRED compare_bar_chart)
 
 # The hybrid's isotropic surface alone (fast): the ONERA M6 wing at half the chordwise
 # resolution, i.e. twice the default edge length.

@@ -25,8 +25,9 @@ set_tests_properties(deform_naca0012_pitch_translation_only PROPERTIES LABELS re
 add_test(NAME deform_naca0012_pitch_leading_edge
          COMMAND ${MIXMESH_PYTHON} ${CMAKE_CURRENT_LIST_DIR}/deform_wall_angles.py ${naca_case}/naca0012.msh
                  ${deform_output}/naca0012_pitch_0004.vtu --marker airfoil --at-most 2.0)
+set_property(TEST deform_naca0012_pitch APPEND PROPERTY FIXTURES_SETUP deform_naca0012_pitch)
 set_tests_properties(deform_naca0012_pitch_leading_edge PROPERTIES LABELS regression
-  DEPENDS deform_naca0012_pitch)
+  FIXTURES_REQUIRED deform_naca0012_pitch)
 
 # Wing, bending + twist mode with sliding root and tip planes: valid by check_mesh.py.
 add_test(NAME deform_wing_bend_twist
@@ -35,7 +36,8 @@ add_test(NAME deform_wing_bend_twist
 set_tests_properties(deform_wing_bend_twist PROPERTIES LABELS regression FAIL_REGULAR_EXPRESSION "error|INVALID")
 add_test(NAME deform_wing_bend_twist_check
          COMMAND ${MIXMESH_PYTHON} ${MIXMESH_CHECK_MESH} --no-foam -q ${deform_output}/wing_bend_twist.vtu)
-set_tests_properties(deform_wing_bend_twist_check PROPERTIES LABELS regression DEPENDS deform_wing_bend_twist)
+set_property(TEST deform_wing_bend_twist APPEND PROPERTY FIXTURES_SETUP deform_wing_bend_twist)
+set_tests_properties(deform_wing_bend_twist_check PROPERTIES LABELS regression FIXTURES_REQUIRED deform_wing_bend_twist)
 
 # The quasi-2D viscous NACA 0012 (one cell thick between sliding planes, first layer
 # 1e-5 chords) pitched 90° in one step with ARA: valid by the independent checker

@@ -68,8 +68,9 @@ if(TARGET mixmesh-cli)
   add_test(NAME deform_idw_naca0012_pitch_leading_edge
            COMMAND ${MIXMESH_PYTHON} ${CMAKE_CURRENT_LIST_DIR}/deform_wall_angles.py ${idw_naca}
                    ${idw_output}/naca0012_pitch_0004.vtu --marker airfoil --at-most 2.0)
-  set_tests_properties(deform_idw_naca0012_pitch_leading_edge PROPERTIES LABELS regression
-                       DEPENDS deform_idw_naca0012_pitch)
+  set_property(TEST deform_idw_naca0012_pitch APPEND PROPERTY FIXTURES_SETUP deform_idw_naca0012_pitch)
+set_tests_properties(deform_idw_naca0012_pitch_leading_edge PROPERTIES LABELS regression
+                       FIXTURES_REQUIRED deform_idw_naca0012_pitch)
 
   # 3D: the wing's bending + twist mode with symmetry planes, valid by check_mesh.py.
   add_test(NAME deform_idw_wing_bend_twist
@@ -78,8 +79,9 @@ if(TARGET mixmesh-cli)
   set_tests_properties(deform_idw_wing_bend_twist PROPERTIES LABELS regression FAIL_REGULAR_EXPRESSION "error|INVALID")
   add_test(NAME deform_idw_wing_bend_twist_check
            COMMAND ${MIXMESH_PYTHON} ${MIXMESH_CHECK_MESH} --no-foam -q ${idw_output}/wing_bend_twist.vtu)
-  set_tests_properties(deform_idw_wing_bend_twist_check PROPERTIES LABELS regression
-                       DEPENDS deform_idw_wing_bend_twist)
+  set_property(TEST deform_idw_wing_bend_twist APPEND PROPERTY FIXTURES_SETUP deform_idw_wing_bend_twist)
+set_tests_properties(deform_idw_wing_bend_twist_check PROPERTIES LABELS regression
+                       FIXTURES_REQUIRED deform_idw_wing_bend_twist)
 endif()
 
 # scripts/compare-deform-methods.py on the NACA 0012 pitch case, cut short at 10°: both

@@ -54,8 +54,9 @@ add_test(NAME march_wing_tip_trailing_edge_taper_0_3
 set_tests_properties(march_wing_tip_trailing_edge_taper_0_3 PROPERTIES LABELS regression)
 add_test(NAME march_wing_tip_trailing_edge_taper_0_3_check
          COMMAND ${MIXMESH_PYTHON} ${MIXMESH_CHECK_MESH} ${march_output}/tip_trailing_edge/wing_variants.vtu --no-foam)
+set_property(TEST march_wing_tip_trailing_edge_taper_0_3 APPEND PROPERTY FIXTURES_SETUP march_wing_tip_trailing_edge_taper_0_3)
 set_tests_properties(march_wing_tip_trailing_edge_taper_0_3_check PROPERTIES LABELS regression
-                     DEPENDS march_wing_tip_trailing_edge_taper_0_3)
+                     FIXTURES_REQUIRED march_wing_tip_trailing_edge_taper_0_3)
 
 add_test(NAME march_wing_wake_end_in_plane_taper_1
          COMMAND $<TARGET_FILE:mixmesh-cli> generate ${PROJECT_SOURCE_DIR}/cases/batch/wing_variants.toml
@@ -63,8 +64,9 @@ add_test(NAME march_wing_wake_end_in_plane_taper_1
 set_tests_properties(march_wing_wake_end_in_plane_taper_1 PROPERTIES LABELS regression)
 add_test(NAME march_wing_wake_end_in_plane_taper_1_check
          COMMAND ${MIXMESH_PYTHON} ${MIXMESH_CHECK_MESH} ${march_output}/wake_end/wing_variants.vtu --no-foam)
+set_property(TEST march_wing_wake_end_in_plane_taper_1 APPEND PROPERTY FIXTURES_SETUP march_wing_wake_end_in_plane_taper_1)
 set_tests_properties(march_wing_wake_end_in_plane_taper_1_check PROPERTIES LABELS regression
-                     DEPENDS march_wing_wake_end_in_plane_taper_1)
+                     FIXTURES_REQUIRED march_wing_wake_end_in_plane_taper_1)
 
 # The half-base quads at a cranked wing's kink (a forward-swept outboard trailing edge)
 # join the lines on their own side of the wake sheet: measured along their long edge

@@ -11,21 +11,24 @@ add_test(NAME surface_onera_m6_generate
                  -o ${surface_output}/onera_m6_surface.vtu)
 add_test(NAME surface_onera_m6_check
          COMMAND ${MIXMESH_PYTHON} ${surface_check} mesh ${surface_output}/onera_m6_surface.vtu --wing-faces 8000)
-set_tests_properties(surface_onera_m6_check PROPERTIES DEPENDS surface_onera_m6_generate)
+set_property(TEST surface_onera_m6_generate APPEND PROPERTY FIXTURES_SETUP surface_onera_m6_generate)
+set_tests_properties(surface_onera_m6_check PROPERTIES FIXTURES_REQUIRED surface_onera_m6_generate)
 
 add_test(NAME surface_stations_generate
          COMMAND $<TARGET_FILE:mixmesh-cli> surface ${surface_cases}/naca_stations.toml
                  -o ${surface_output}/stations_surface.vtu)
 add_test(NAME surface_stations_check
          COMMAND ${MIXMESH_PYTHON} ${surface_check} mesh ${surface_output}/stations_surface.vtu --wing-faces 2520)
-set_tests_properties(surface_stations_check PROPERTIES DEPENDS surface_stations_generate)
+set_property(TEST surface_stations_generate APPEND PROPERTY FIXTURES_SETUP surface_stations_generate)
+set_tests_properties(surface_stations_check PROPERTIES FIXTURES_REQUIRED surface_stations_generate)
 
 add_test(NAME surface_import_generate
          COMMAND $<TARGET_FILE:mixmesh-cli> surface ${surface_cases}/import_box.toml
                  -o ${surface_output}/import_box_surface.vtu)
 add_test(NAME surface_import_check
          COMMAND ${MIXMESH_PYTHON} ${surface_check} mesh ${surface_output}/import_box_surface.vtu --wing-faces 45)
-set_tests_properties(surface_import_check PROPERTIES DEPENDS surface_import_generate)
+set_property(TEST surface_import_generate APPEND PROPERTY FIXTURES_SETUP surface_import_generate)
+set_tests_properties(surface_import_check PROPERTIES FIXTURES_REQUIRED surface_import_generate)
 
 # name, config, expected error (regular expression on the one stderr line)
 set(surface_bad_inputs
