@@ -36,14 +36,14 @@ while read -r config; do
   name=$(basename "$config" .toml)
   dir=$outdir/$name
   mkdir -p "$dir"
-  if ! "$program" generate "$config" --output-dir "$dir" > "$dir/generate.log" 2>&1; then
+  if ! "$program" generate "$config" --output-dir "$dir" > "$dir/generate.log" 2>&1 < /dev/null; then
     echo "$name: generate failed: $(tail -1 "$dir/generate.log")"
     failed+=("$name generate")
     continue
   fi
   # The quarter root chord and the semi-span: from the planform keys, or from the first
   # and last stations of a cranked wing (random-wings.py writes them in order).
-  read -r centre chord span < <("$python" - "$config" <<'PYTHON'
+  if ! planform=$("$python" - "$config" <<'PYTHON'
 import sys, tomllib
 wing = tomllib.load(open(sys.argv[1], "rb"))["wing"]
 if "station" in wing:
@@ -52,18 +52,23 @@ if "station" in wing:
 else:
     print(0.25 * wing["root_chord"], wing["root_chord"], wing["semi_span"])
 PYTHON
-  )
-  "$python" "$root/scripts/wing-motions.py" "$dir/$name.vtu" "$dir/motions" "$centre" "$chord" "$span" > /dev/null
+  ) || ! read -r centre chord span <<< "$planform" ||
+    ! "$python" "$root/scripts/wing-motions.py" "$dir/$name.vtu" "$dir/motions" "$centre" "$chord" "$span" < /dev/null \
+      > "$dir/motions.log" 2>&1; then
+    echo "$name: no motion files: $(tail -1 "$dir/motions.log" 2>/dev/null)"
+    failed+=("$name motions")
+    continue
+  fi
   for motion in pitch+15 pitch-15 plunge bend; do
     for method in ara idw; do
       total=$((total + 1))
       output=$dir/${motion}_${method}.vtu
       status=ok
       if ! "$program" deform "$dir/$name.vtu" --motion "$dir/motions/${motion}_${method}.toml" -o "$output" -v \
-          > "$dir/${motion}_${method}.log" 2>&1; then
+          > "$dir/${motion}_${method}.log" 2>&1 < /dev/null; then
         status="deform failed: $(tail -1 "$dir/${motion}_${method}.log" | cut -c1-120)"
-      elif ! "$python" "$checker" "$output" > "$dir/${motion}_${method}.check" 2>&1; then
-        status="checker: $(grep -m1 INVALID "$dir/${motion}_${method}.check" | cut -c1-120)"
+      elif ! "$python" "$checker" "$output" > "$dir/${motion}_${method}.check" 2>&1 < /dev/null; then
+        status="checker: $(grep -m1 INVALID "$dir/${motion}_${method}.check" | cut -c1-120 || true)"
       fi
       figures=$(grep -m1 "step 1/1" "$dir/${motion}_${method}.log" |
         sed -E 's/.*\): ([0-9.e+-]+) s, min scaled Jacobian [0-9.e+-]+ -> ([0-9.e+-]+), wall-line angle change up to ([0-9.e+-]+) deg.*/\1 s, min s.J. \2, wall-line change \3 deg/' || true)
@@ -77,7 +82,7 @@ PYTHON
     done
   done
 done < "$outdir/configs.txt"
-echo "valid: $valid of $total deformed meshes"
+echo "valid: $valid of $total deformed meshes (wings that did not mesh or got no motion files count as failed below)"
 if [[ ${#failed[@]} -gt 0 ]]; then
   printf 'failed: %s\n' "${failed[@]}"
   exit 1

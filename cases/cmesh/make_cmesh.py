@@ -5,10 +5,15 @@ the wake cut an interior line where the grid lines leaving the wake's two sides 
 the first cell 1e-5 chords high on the airfoil and on both sides of the cut, one cell
 thick in z (hexahedra only) between the sliding planes front and back.
 
-Writes cmesh.msh (Gmsh 2.2; markers airfoil, farfield, front, back).
+Writes OUTPUT (default cmesh.msh in the working folder; Gmsh 2.2; markers airfoil,
+farfield, front, back).
 
     ./make_cmesh.py [--around 160] [--wake 48] [--normal 64] [--first-spacing 1e-5]
-                    [--radius 10] [--wake-length 10] [--layer-height 0.05] [--output cmesh.msh]
+                    [--radius 10] [--wake-length 10] [--layer-height 0.05] [--thickness 0.05]
+                    [--output cmesh.msh]
+
+--around must be even (cells on each side of the airfoil); --output is taken relative
+to the working folder.
 """
 import argparse
 import math
@@ -58,7 +63,7 @@ def inner_line(around, wake, wake_length):
     # by the trailing-edge half-angle and would cross the cut's lines a few cells off
     # the wall.
     for index in airfoil:
-        x, y = points[index]
+        x = points[index, 0]
         turn = min(1.0, max(0.0, (x - 0.8) / 0.2))
         normals[index] = (1.0 - turn) * normals[index] + turn * numpy.array([0.0, 1.0 if index >= airfoil.start + half else -1.0])
         normals[index] /= numpy.linalg.norm(normals[index])
@@ -117,6 +122,8 @@ def main():
     parser.add_argument("--thickness", type=float, default=0.05, help="extent in z")
     parser.add_argument("--output", default="cmesh.msh")
     arguments = parser.parse_args()
+    if arguments.around < 4 or arguments.around % 2:
+        parser.error("--around must be an even number of at least 4, not %d" % arguments.around)
 
     inner, normals, airfoil = inner_line(arguments.around, arguments.wake, arguments.wake_length)
     outer = outer_line(inner, normals, airfoil, arguments.radius)
@@ -190,7 +197,7 @@ def main():
             elements[index] = (kind, name, [b, a, a + count, b + count])
 
     physical = {"fluid": (3, 1), "front": (2, 2), "back": (2, 3), "farfield": (2, 4), "airfoil": (2, 5)}
-    output = pathlib.Path(__file__).resolve().parent / arguments.output
+    output = pathlib.Path(arguments.output)
     with open(output, "w") as stream:
         stream.write("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$PhysicalNames\n%d\n" % len(physical))
         for name, (dimension, tag) in physical.items():
