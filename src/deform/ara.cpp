@@ -72,7 +72,9 @@ void pseudo_laplacian_weights(const Vector3& node, const Index* cells, std::size
   // is 1 − 1 up to rounding: noise, clipped to [0, 2]. That is every node of a
   // one-cell-thick quasi-2D mesh (its cells' centres lie half a cell from both planes)
   // and a sliding node whose cells are one equal-width row beside the plane; their
-  // weights then come from the directions the centres do spread in, as in 2D.
+  // weights then come from the directions the centres do spread in, as in 2D. "No
+  // extent" is a spread under 1/1000 of the widest one (eigenvalues, squared lengths,
+  // under 1e-6 of the largest): a fit along so thin a spread is as ill-posed as none.
   Eigen::Matrix3d kept = Eigen::Matrix3d::Identity();
   if (planar) {  // no z extent: solve the 2×2 system
     kept(2, 2) = 0.0;
@@ -90,7 +92,9 @@ void pseudo_laplacian_weights(const Vector3& node, const Index* cells, std::size
     second(0, 2) = second(2, 0) = second(1, 2) = second(2, 1) = 0.0;
     first.z() = 0.0;
   } else {
-    second = kept * second * kept + (Eigen::Matrix3d::Identity() - kept);
+    // The dropped directions get the kept ones' scale, so that the solver's pivot test
+    // does not take a mesh of tiny cells for a singular one; λ has no part in them.
+    second = kept * second * kept + (second.trace() / 3.0) * (Eigen::Matrix3d::Identity() - kept);
     first = kept * first;
   }
   Vector3 lambda = Vector3::Zero();

@@ -1,8 +1,8 @@
 // The ARA method on planar and volume O-grids around an ellipse.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 
@@ -139,17 +139,23 @@ TEST(DeformAra, OneCellThickMeshDeformsAsItsPlanarSection) {
       EXPECT_DOUBLE_EQ(bottom.z(), slab.points[node].z());
       EXPECT_DOUBLE_EQ(top.z(), slab.points[count + node].z());
     }
-    std::printf(
-        "%g deg: planes %.3g apart, %.3g from the section; min s.J. %.6f / %.6f; wall-line change %.4f / "
-        "%.4f deg\n",
-        angle, between_planes, from_section, deformed.after.min_scaled_jacobian,
-        section.after.min_scaled_jacobian, deformed.max_wall_angle_change, section.max_wall_angle_change);
     EXPECT_LT(between_planes, 1e-9) << angle;
     EXPECT_LT(from_section, 1e-3) << angle;
     EXPECT_GT(deformed.after.min_scaled_jacobian, 0.98 * section.after.min_scaled_jacobian) << angle;
     // Wall lines are found on both planes (their angles as in the section) and stay at
     // the wall normal as the section's do.
     EXPECT_NEAR(deformed.before.max_wall_angle, section.before.max_wall_angle, 1e-9) << angle;
+    MixedMesh named = slab;
+    std::vector<MarkerRole> roles(4, MarkerRole::fixed);
+    roles.at(static_cast<std::size_t>(named.marker("wall"))) = MarkerRole::moving;
+    roles.at(static_cast<std::size_t>(named.marker("bottom"))) = MarkerRole::sliding;
+    roles.at(static_cast<std::size_t>(named.marker("top"))) = MarkerRole::sliding;
+    const WallLines lines = wall_lines(slab, roles);
+    // Every wall and far-field node of both planes has its line.
+    EXPECT_EQ(lines.wall_nodes.size(), static_cast<std::size_t>(4 * grid.around));
+    EXPECT_EQ(
+        std::count_if(lines.line_ends.begin(), lines.line_ends.end(), [](Index end) { return end >= 0; }),
+        4 * grid.around);
     EXPECT_LT(deformed.max_wall_angle_change, 2.0) << angle;
     EXPECT_GT(section.max_wall_angle_change, 0.0);
   }
