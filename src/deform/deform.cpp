@@ -65,15 +65,14 @@ DeformResult step_from(const MixedMesh& mesh, const MixedMesh& reference, const 
     seconds += measured->layer_seconds;
   }
   clock = Stopwatch();
+  // The dual mesh is offered for this move() only, however it ends.
+  struct Offer {
+    DeformationMethod& method;
+    ~Offer() { method.offer_dual_mesh(nullptr); }
+  };
   method.offer_dual_mesh(&measured->dual);
-  std::vector<Vector3> points;
-  try {
-    points = method.move(mesh, boundary, log);
-  } catch (...) {
-    method.offer_dual_mesh(nullptr);
-    throw;
-  }
-  method.offer_dual_mesh(nullptr);
+  const Offer offer{method};
+  std::vector<Vector3> points = method.move(mesh, boundary, log);
   if (points.size() != mesh.points.size())
     throw Error(method.name() + ": returned " + std::to_string(points.size()) + " points for " +
                 std::to_string(mesh.points.size()));

@@ -84,19 +84,10 @@ TEST(CellGeometry, CircumcentreIsEquallyFarFromAllFourPointsAndAbsentForAFlatSet
           .has_value());
 }
 
-// A wake layer hexahedron 8 µm thick under a 4 × 10 cm face, warped by a bending mode
-// (an IDW step on a random wing): every corner and sub-tetrahedron is positive, yet
-// OpenFOAM's checkMesh finds its face pyramids on the centroid inverted (a hard error).
+// The warped wake hexahedron (reference_cells.hpp): every corner and sub-tetrahedron is
+// positive, yet OpenFOAM's checkMesh finds its face pyramids on the centroid inverted.
 TEST(CellGeometry, ThinWarpedHexahedronHasInvertedFacePyramids) {
-  const std::vector<Vector3> points = {
-      {1.2256798049130431, 0.87780310797415084, 0.079142988210004039},
-      {1.2661606338252624, 0.8790726194783518, 0.071874017043730892},
-      {1.2805760054537865, 0.97821658301744352, 0.091432891834283936},
-      {1.2404000539757827, 0.97785694888647501, 0.094158731998119333},
-      {1.2256801957844536, 0.87780210036781103, 0.079149153433077962},
-      {1.2661612226409324, 0.87907123594122927, 0.071882240193709993},
-      {1.2805765153091182, 0.97821529693123199, 0.091440263864830701},
-      {1.2404004756018705, 0.9778558902778608, 0.094164782214790979}};
+  const std::vector<Vector3> points = reference::warped_wake_hexahedron();
   const Index nodes[8] = {0, 1, 2, 3, 4, 5, 6, 7};
   EXPECT_TRUE(cell_shape(CellType::hexahedron, points, nodes).valid());
   EXPECT_GT(inverted_face_pyramids(CellType::hexahedron, points, nodes), 0);

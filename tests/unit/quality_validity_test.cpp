@@ -86,18 +86,11 @@ TEST(QualityValidity, InvertedCellInMeshWindsItsInteriorFacesWrongly) {
   EXPECT_EQ(count_of(report, "untagged_boundary_faces"), 0u);
 }
 
-// The warped wake hexahedron of CellGeometry.ThinWarpedHexahedronHasInvertedFacePyramids:
-// every sub-tetrahedron positive, its face pyramids inverted, so checkMesh rejects it.
+// The warped wake hexahedron (reference_cells.hpp): every sub-tetrahedron positive, its
+// face pyramids inverted, so checkMesh rejects it.
 TEST(QualityValidity, HexahedronWithInvertedFacePyramidsIsTangled) {
   MixedMesh mesh = reference::single_cell(CellType::hexahedron);
-  mesh.points = {{1.2256798049130431, 0.87780310797415084, 0.079142988210004039},
-                 {1.2661606338252624, 0.8790726194783518, 0.071874017043730892},
-                 {1.2805760054537865, 0.97821658301744352, 0.091432891834283936},
-                 {1.2404000539757827, 0.97785694888647501, 0.094158731998119333},
-                 {1.2256801957844536, 0.87780210036781103, 0.079149153433077962},
-                 {1.2661612226409324, 0.87907123594122927, 0.071882240193709993},
-                 {1.2805765153091182, 0.97821529693123199, 0.091440263864830701},
-                 {1.2404004756018705, 0.9778558902778608, 0.094164782214790979}};
+  mesh.points = reference::warped_wake_hexahedron();
   ASSERT_TRUE(cell_shape(CellType::hexahedron, mesh.points, mesh.cell(CellType::hexahedron, 0)).valid());
   reference::tag_boundary(mesh);
   const ValidityReport report = validate(mesh);
