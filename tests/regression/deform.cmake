@@ -88,21 +88,26 @@ set_tests_properties(deform_naca0012_translation_only_fails PROPERTIES LABELS re
 # half the root chord; then the bending mode of scripts/wing-motions.py on the generated
 # mesh with both methods), each deformed mesh judged by the independent checker. Heavy:
 # about three minutes (docs/deform.md, "Motions of issue #15").
+# A mesh-then-deform case of cases/pipeline, NAME.toml, run by `mixmesh generate` (heavy):
+# it passes when NAME_LAST.vtu is written, and the independent checker judges each
+# NAME_<mesh>.vtu of the remaining arguments.
+function(pipeline_deform_case name last)
+  set(output ${CMAKE_CURRENT_BINARY_DIR}/deform_${name})
+  add_test(NAME deform_${name}
+           COMMAND mixmesh-cli generate ${PROJECT_SOURCE_DIR}/cases/pipeline/${name}.toml --output-dir ${output})
+  set_tests_properties(deform_${name} PROPERTIES LABELS "regression;heavy" FIXTURES_SETUP deform_${name}
+                       PASS_REGULAR_EXPRESSION "wrote [^\n]*${name}_${last}.vtu"
+                       FAIL_REGULAR_EXPRESSION "mixmesh: error|INVALID")
+  foreach(mesh ${ARGN})
+    add_test(NAME deform_${name}_check_${mesh}
+             COMMAND ${MIXMESH_PYTHON} ${MIXMESH_CHECK_MESH} ${output}/${name}_${mesh}.vtu --no-foam -q)
+    set_tests_properties(deform_${name}_check_${mesh} PROPERTIES LABELS "regression;heavy"
+                         FIXTURES_REQUIRED deform_${name} PASS_REGULAR_EXPRESSION "\nVALID")
+  endforeach()
+endfunction()
+
 set(m6_motions_output ${CMAKE_CURRENT_BINARY_DIR}/deform_onera_m6_motions)
-add_test(NAME deform_onera_m6_motions
-         COMMAND mixmesh-cli generate ${PROJECT_SOURCE_DIR}/cases/pipeline/onera_m6_motions.toml
-                 --output-dir ${m6_motions_output})
-set_tests_properties(deform_onera_m6_motions PROPERTIES LABELS "regression;heavy"
-                     FIXTURES_SETUP deform_onera_m6_motions
-                     PASS_REGULAR_EXPRESSION "wrote [^\n]*onera_m6_motions_plunge_ara.vtu"
-                     FAIL_REGULAR_EXPRESSION "mixmesh: error|INVALID")
-foreach(motion pitch_up pitch_down plunge pitch_up_ara pitch_down_ara plunge_ara)
-  add_test(NAME deform_onera_m6_motions_check_${motion}
-           COMMAND ${MIXMESH_PYTHON} ${MIXMESH_CHECK_MESH} ${m6_motions_output}/onera_m6_motions_${motion}.vtu
-                   --no-foam -q)
-  set_tests_properties(deform_onera_m6_motions_check_${motion} PROPERTIES LABELS "regression;heavy"
-                       FIXTURES_REQUIRED deform_onera_m6_motions PASS_REGULAR_EXPRESSION "\nVALID")
-endforeach()
+pipeline_deform_case(onera_m6_motions plunge_ara pitch_up pitch_down plunge pitch_up_ara pitch_down_ara plunge_ara)
 add_test(NAME deform_onera_m6_motions_bend_files
          COMMAND ${MIXMESH_PYTHON} ${PROJECT_SOURCE_DIR}/scripts/wing-motions.py
                  ${m6_motions_output}/onera_m6_motions.vtu ${m6_motions_output}/motions 0.2 0.8059 1.1963)
@@ -128,21 +133,5 @@ endforeach()
 # ±10°, ±0.5 root chord, 8 steps each from the generated mesh, IDW and ARA); the
 # independent checker judges the four extreme steps of each method. Heavy: about two
 # minutes for the generation and the 16 steps.
-set(m6_pitch_plunge_output ${CMAKE_CURRENT_BINARY_DIR}/deform_onera_m6_pitch_plunge)
-add_test(NAME deform_onera_m6_pitch_plunge
-         COMMAND mixmesh-cli generate ${PROJECT_SOURCE_DIR}/cases/pipeline/onera_m6_pitch_plunge.toml
-                 --output-dir ${m6_pitch_plunge_output})
-set_tests_properties(deform_onera_m6_pitch_plunge PROPERTIES LABELS "regression;heavy"
-                     FIXTURES_SETUP deform_onera_m6_pitch_plunge
-                     PASS_REGULAR_EXPRESSION "wrote [^\n]*onera_m6_pitch_plunge_ara_0008.vtu"
-                     FAIL_REGULAR_EXPRESSION "mixmesh: error|INVALID")
-foreach(method idw ara)
-  foreach(step 0002 0004 0006 0008)
-    add_test(NAME deform_onera_m6_pitch_plunge_check_${method}_${step}
-             COMMAND ${MIXMESH_PYTHON} ${MIXMESH_CHECK_MESH} --no-foam -q
-                     ${m6_pitch_plunge_output}/onera_m6_pitch_plunge_${method}_${step}.vtu)
-    set_tests_properties(deform_onera_m6_pitch_plunge_check_${method}_${step} PROPERTIES
-                         LABELS "regression;heavy" FIXTURES_REQUIRED deform_onera_m6_pitch_plunge
-                         PASS_REGULAR_EXPRESSION "\nVALID")
-  endforeach()
-endforeach()
+pipeline_deform_case(onera_m6_pitch_plunge ara_0008 idw_0002 idw_0004 idw_0006 idw_0008 ara_0002 ara_0004 ara_0006
+                     ara_0008)
