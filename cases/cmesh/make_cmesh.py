@@ -18,8 +18,12 @@ to the working folder.
 import argparse
 import math
 import pathlib
+import sys
 
 import numpy
+
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[2] / "scripts"))
+from msh22 import write_msh22  # noqa: E402
 
 
 def naca0012(x):
@@ -198,18 +202,7 @@ def main():
 
     physical = {"fluid": (3, 1), "front": (2, 2), "back": (2, 3), "farfield": (2, 4), "airfoil": (2, 5)}
     output = pathlib.Path(arguments.output)
-    with open(output, "w") as stream:
-        stream.write("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$PhysicalNames\n%d\n" % len(physical))
-        for name, (dimension, tag) in physical.items():
-            stream.write('%d %d "%s"\n' % (dimension, tag, name))
-        stream.write("$EndPhysicalNames\n$Nodes\n%d\n" % len(points))
-        for index, (x, y, z) in enumerate(points, 1):
-            stream.write("%d %.17g %.17g %.17g\n" % (index, x, y, z))
-        stream.write("$EndNodes\n$Elements\n%d\n" % len(elements))
-        for index, (kind, name, nodes) in enumerate(elements, 1):
-            tag = physical[name][1]
-            stream.write("%d %d 2 %d %d %s\n" % (index, kind, tag, tag, " ".join(str(n + 1) for n in nodes)))
-        stream.write("$EndElements\n")
+    write_msh22(output, points, elements, physical)
     print("%s: %d points, %d hexahedra; first cell %.3g chords, %d x %d cells"
           % (output.name, len(points), len(quads), arguments.first_spacing, columns - 1, rows - 1))
 

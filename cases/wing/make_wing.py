@@ -19,10 +19,14 @@ import argparse
 import math
 import pathlib
 import subprocess
+import sys
 import tempfile
 
 import meshio
 import numpy
+
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[2] / "scripts"))
+from msh22 import write_msh22  # noqa: E402
 
 
 def section_mesh(folder, wall_spacing):
@@ -54,7 +58,8 @@ def main():
     section = section_mesh(folder, arguments.wall_spacing)
 
     # Planar cells and the marked boundary lines of the section.
-    names = {int(tag): name for name, (tag, _) in section.field_data.items()}
+    # The section's curve "airfoil" becomes the volume mesh's marker "wing".
+    names = {int(tag): "wing" if name == "airfoil" else name for name, (tag, _) in section.field_data.items()}
     triangles, quads, lines = [], [], []
     for block, tags in zip(section.cells, section.cell_data["gmsh:physical"]):
         if block.type == "triangle":
@@ -99,25 +104,14 @@ def main():
         for k in range(layers):
             elements.append((3, name, [a + k * count, b + k * count, b + (k + 1) * count, a + (k + 1) * count]))
 
-    physical = {"fluid": (3, 1), "root": (2, 2), "tip": (2, 3), "farfield": (2, 4), "airfoil": (2, 5)}
+    physical = {"fluid": (3, 1), "root": (2, 2), "tip": (2, 3), "farfield": (2, 4), "wing": (2, 5)}
     output = folder / arguments.output
-    with open(output, "w") as stream:
-        stream.write("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$PhysicalNames\n%d\n" % len(physical))
-        for name, (dimension, tag) in physical.items():
-            stream.write('%d %d "%s"\n' % (dimension, tag, "wing" if name == "airfoil" else name))
-        stream.write("$EndPhysicalNames\n$Nodes\n%d\n" % len(points))
-        for index, (x, y, zz) in enumerate(points, 1):
-            stream.write("%d %.17g %.17g %.17g\n" % (index, x, y, zz))
-        stream.write("$EndNodes\n$Elements\n%d\n" % len(elements))
-        for index, (kind, name, nodes) in enumerate(elements, 1):
-            tag = physical[name][1]
-            stream.write("%d %d 2 %d %d %s\n" % (index, kind, tag, tag, " ".join(str(n + 1) for n in nodes)))
-        stream.write("$EndElements\n")
+    write_msh22(output, points, elements, physical)
 
     # Bending + twist mode on the wing surface nodes.
     wing_nodes = []
     if arguments.mode:
-        wing_nodes = sorted({n for kind, name, nodes in elements if name == "airfoil" for n in nodes})
+        wing_nodes = sorted({n for kind, name, nodes in elements if name == "wing" for n in nodes})
         with open(folder / arguments.mode, "w") as stream:
             stream.write("x,y,z,dx,dy,dz\n")
             for node in wing_nodes:
