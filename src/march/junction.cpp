@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 
 #include "mixmesh/mesh/cell_geometry.hpp"
 
@@ -28,51 +29,77 @@ const Junction* junction_of(const Front& front, int face) {
   return nullptr;
 }
 
-JunctionCells junction_cells(const Front& front, const Junction& junction, const std::vector<Vector3>& bottom,
-                             const std::vector<Vector3>& top) {
-  const FrontFace& face = front.faces[static_cast<std::size_t>(junction.face)];
-  auto column = [&](int k) { return static_cast<std::size_t>(face.columns[static_cast<std::size_t>(k)]); };
+namespace {
+
+// The stack's faces, outward: per layer the sides over the split face's edges 0 -> 1,
+// 1 -> 2 and 2 -> 3 and (above layer 0) 3 -> 0, then the top; the triangles are the wall
+// triangle and the side over edge 3 -> 0 on layer 0, where its two lines start at t.
+void stack_faces(int layers, std::vector<std::array<int, 4>>& quads,
+                 std::vector<std::array<int, 3>>& triangles) {
+  quads.clear();
+  for (int layer = 0; layer < layers; ++layer)
+    for (int corner = 0; corner < 4; ++corner) {
+      if (layer == 0 && corner == 3) continue;
+      const int next = (corner + 1) % 4;
+      quads.push_back({stack_point(layer, corner), stack_point(layer, next), stack_point(layer + 1, next),
+                       stack_point(layer + 1, corner)});
+    }
+  quads.push_back(
+      {stack_point(layers, 0), stack_point(layers, 1), stack_point(layers, 2), stack_point(layers, 3)});
+  triangles = {{stack_point(0, 0), stack_point(0, 2), stack_point(0, 1)},
+               {stack_point(0, 0), stack_point(1, 0), stack_point(1, 3)}};
+}
+
+double piece_quality(const JunctionCell& cell, const std::vector<Vector3>& points) {
+  std::vector<Index> indices(cell.nodes.begin(), cell.nodes.end());
+  const CellShape shape = cell_shape(cell.type, points, indices.data());
+  if (!shape.valid()) return -1.0;
+  if (cell.type != CellType::tetrahedron) return shape.min_corner_jacobian;
+  const double largest = largest_dihedral_degrees(points[indices[0]], points[indices[1]], points[indices[2]],
+                                                  points[indices[3]]);
+  return std::sin((180.0 - largest) * std::acos(-1.0) / 180.0);
+}
+
+}  // namespace
+
+JunctionCells junction_cells(const JunctionLevels& levels) {
+  const int layers = static_cast<int>(levels.size()) - 1;
   JunctionCells result;
   std::vector<Vector3>& points = result.points;
-  points = {bottom[column(0)], bottom[column(1)], bottom[column(2)], top[column(0)],
-            top[column(1)],    top[column(2)],    top[column(3)],    Vector3::Zero()};
+  for (const auto& level : levels) points.insert(points.end(), level.begin(), level.end());
+  points.push_back(Vector3::Zero());
+  const auto centre = static_cast<std::size_t>(result.centre_point());
 
-  // The cut cell's faces, outward: four quads (pyramid bases) and two triangles. The
-  // pieces are cones from the centre over them, so a centre outside the cell gives an
-  // inverted piece (never turned round to hide it).
-  const std::vector<std::vector<int>> quads = {{wall_corner, wall_after, top_a, top_after},
-                                               {wall_after, wall_before, top_b, top_a},
-                                               {wall_before, wall_corner, top_before, top_b},
-                                               {top_after, top_a, top_b, top_before}};
-  const std::vector<std::vector<int>> triangles = {{wall_corner, wall_before, wall_after},
-                                                   {wall_corner, top_after, top_before}};
-  auto cut = [&](std::vector<JunctionCell>& cells) {
-    cells.clear();
-    // Pyramid face 0 is (0, 3, 2, 1) and tetrahedron face 0 is (0, 2, 1), outward.
-    for (const auto& quad : quads)
-      cells.push_back({CellType::pyramid, {quad[0], quad[3], quad[2], quad[1], centre}});
-    for (const auto& triangle : triangles)
-      cells.push_back({CellType::tetrahedron, {triangle[0], triangle[2], triangle[1], centre}});
-  };
-  // The centre: the point of the cell (barycentric in the wall triangle, a fraction of
-  // the way up) whose worst piece is best. The cell is a thin slab with its split
-  // corner at one end, so the best point is near that corner; the mean of the nodes
-  // gives needle tetrahedra there.
-  const Vector3 up = (points[top_after] + points[top_a] + points[top_b] + points[top_before]) / 4.0 -
-                     (points[wall_corner] + points[wall_after] + points[wall_before]) / 3.0;
+  // The pieces are cones from the inner point over the stack's faces, so a point
+  // outside the stack gives an inverted piece (never turned round to hide it).
+  std::vector<std::array<int, 4>> quads;
+  std::vector<std::array<int, 3>> triangles;
+  stack_faces(layers, quads, triangles);
+  const int inner = result.centre_point();
+  for (const auto& quad : quads)  // pyramid face 0 is (0, 3, 2, 1), outward
+    result.cells.push_back({CellType::pyramid, {quad[0], quad[3], quad[2], quad[1], inner}});
+  for (const auto& triangle : triangles)  // tetrahedron face 0 is (0, 2, 1), outward
+    result.cells.push_back({CellType::tetrahedron, {triangle[0], triangle[2], triangle[1], inner}});
+
+  // The inner point: barycentric (u, v) in the split face's triangle at a fraction w of
+  // the stack's height, following its lines (t the middle of the two lines of corners 0
+  // and 3). A first cell alone is a thin slab with its split corner at one end, so the
+  // best point is near that corner; the mean of the nodes gives needle pieces there.
   auto place = [&](double u, double v, double w) {
-    points[centre] = points[wall_corner] + u * (points[wall_after] - points[wall_corner]) +
-                     v * (points[wall_before] - points[wall_corner]) + w * up;
+    const double height = w * layers;
+    const int below = std::min(static_cast<int>(height), layers - 1);
+    const double up = height - below;
+    std::array<Vector3, 4> at;
+    for (std::size_t c = 0; c < 4; ++c)
+      at[c] = (1.0 - up) * levels[static_cast<std::size_t>(below)][c] +
+              up * levels[static_cast<std::size_t>(below + 1)][c];
+    const Vector3 corner = 0.5 * (at[0] + at[3]);
+    points[centre] = corner + u * (at[1] - corner) + v * (at[2] - corner);
   };
   auto worst = [&](double u, double v, double w) {
     place(u, v, w);
-    cut(result.cells);
     double quality = 1.0;
-    for (const JunctionCell& cell : result.cells) {
-      std::vector<Index> indices(cell.nodes.begin(), cell.nodes.end());
-      const CellShape shape = cell_shape(cell.type, points, indices.data());
-      quality = std::min(quality, shape.valid() ? shape.min_corner_jacobian : -1.0);
-    }
+    for (const JunctionCell& cell : result.cells) quality = std::min(quality, piece_quality(cell, points));
     return quality;
   };
   std::array<double, 3> best{1.0 / 3.0, 1.0 / 3.0, 0.5};
@@ -107,8 +134,20 @@ JunctionCells junction_cells(const Front& front, const Junction& junction, const
     }
   }
   place(best[0], best[1], best[2]);
-  cut(result.cells);
+  result.quality = best_quality;
   return result;
+}
+
+JunctionCells junction_cells(const Front& front, const Junction& junction, const std::vector<Vector3>& bottom,
+                             const std::vector<Vector3>& top) {
+  const FrontFace& face = front.faces[static_cast<std::size_t>(junction.face)];
+  JunctionLevels levels(2);
+  for (std::size_t c = 0; c < 4; ++c) {
+    const auto column = static_cast<std::size_t>(face.columns[c]);
+    levels[0][c] = bottom[column];
+    levels[1][c] = top[column];
+  }
+  return junction_cells(levels);
 }
 
 bool junction_valid(const JunctionCells& cells) {

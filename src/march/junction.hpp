@@ -1,41 +1,58 @@
-// The first cells at a junction (front.hpp, Junction): the split face's first cell has
-// the wall triangle (t, a, b) at the bottom and the quad (A, B, C, D) of its four lines
-// on top (A and D both start at t). No single hexahedron, prism or pyramid has those
-// faces, so it is cut about its centre X into a pyramid on each of its four quads and
+// The cells at a junction (front.hpp, Junction): the split face's first cell has the
+// wall triangle (t, a, b) at the bottom and the quad of its four lines on top (the lines
+// of corners 0 and 3 both start at t). No single hexahedron, prism or pyramid has those
+// faces, so the cell is cut about an inner point into a pyramid on each of its quads and
 // a tetrahedron on each of its two triangles. The gap between the two sheet lines along
 // the sheet's free edge is closed by the wrap face there (front.hpp), whose first cell,
-// the prism (t, A, D | w, W_A, W_D), shares the cut cell's triangle (t, A, D).
+// a prism, shares the cut cell's triangle over edge 3 -> 0.
+//
+// A first cell is a first spacing high and as wide as the wall triangle (a thousand
+// times more at a sharp trailing edge), so every piece on its wall triangle or its top
+// quad is flat. The cut is therefore made in a *stack*: the first cell and the
+// hexahedra above it up to a height where an inner point sees every face well. The
+// stack's faces are the faces its cells shared with their neighbours, so the mesh stays
+// conforming.
 #pragma once
 
+#include <array>
 #include <vector>
 
 #include "front.hpp"
 
 namespace mixmesh::march_detail {
 
-// Local point numbers of JunctionCells::points.
-enum JunctionPoint : int {
-  wall_corner = 0,  // t, where both lines start
-  wall_after = 1,   // a (corner 1 of the split face)
-  wall_before = 2,  // b (corner 2)
-  top_after = 3,    // A (line of corner 0)
-  top_a = 4,        // top of corner 1
-  top_b = 5,        // top of corner 2
-  top_before = 6,   // D (line of corner 3)
-  centre = 7        // X
-};
-
 struct JunctionCell {
   CellType type;
   std::vector<int> nodes;  // local point numbers, VTK order, positive volume
 };
 
+// levels[k][c]: the point of the split face's corner c on layer k (k = 0 … layers); on
+// layer 0 corners 0 and 3 are the same point.
+using JunctionLevels = std::vector<std::array<Vector3, 4>>;
+
 struct JunctionCells {
-  std::vector<Vector3> points;      // indexed by JunctionPoint
-  std::vector<JunctionCell> cells;  // 4 pyramids, 2 tetrahedra
+  // Local point numbers: stack_point(layer, corner), then the inner point (centre_point).
+  std::vector<Vector3> points;
+  std::vector<JunctionCell> cells;  // 4 pyramids per layer, 2 tetrahedra
+  // The worst piece: a pyramid by its smallest corner Jacobian, a tetrahedron by the
+  // sine of 180 degrees less its largest dihedral angle (the sliver measure: the
+  // tetrahedron on the wrap's triangle is a needle, which is harmless); <= 0 if invalid.
+  double quality = -1.0;
+  int layers() const { return static_cast<int>(points.size() / 4) - 1; }
+  int centre_point() const { return static_cast<int>(points.size()) - 1; }
 };
 
-// The cells between layer 0 (`bottom`) and layer 1 (`top`), positions per column.
+// Local number of corner `corner` of the split face on layer `layer` (on layer 0,
+// corner 3 is corner 0's point).
+inline int stack_point(int layer, int corner) {
+  return layer == 0 && corner == 3 ? 0 : 4 * layer + corner;
+}
+
+// The stack's pieces about the inner point whose worst piece is best.
+JunctionCells junction_cells(const JunctionLevels& levels);
+
+// The first cell's pieces between layer 0 (`bottom`) and layer 1 (`top`), positions per
+// column: what the march checks as it grows the first layer.
 JunctionCells junction_cells(const Front& front, const Junction& junction, const std::vector<Vector3>& bottom,
                              const std::vector<Vector3>& top);
 

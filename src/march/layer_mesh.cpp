@@ -1,5 +1,8 @@
 #include "layer_mesh.hpp"
 
+#include <algorithm>
+#include <cmath>
+
 #include "junction.hpp"
 
 namespace mixmesh::march_detail {
@@ -21,47 +24,13 @@ std::array<Index, 4> side_face(const Front& front, const BoundaryLayer& result, 
           column_point(result, u, layer + 1)};
 }
 
-// Global point numbers of the junction's local points (junction.hpp) between layers 0
-// and 1; the centre is -1 (it is a new point), and the cells computed from the mesh.
-std::array<Index, 8> junction_indices(const Front& front, const Junction& junction, const BoundaryLayer& result,
-                                      JunctionCells& cells) {
-  const FrontFace& f = front.faces[static_cast<std::size_t>(junction.face)];
-  std::vector<Vector3> bottom(result.column_points.size(), Vector3::Zero()), top = bottom;
-  for (int k = 0; k < 4; ++k) {
-    const int c = f.columns[static_cast<std::size_t>(k)];
-    bottom[static_cast<std::size_t>(c)] =
-        result.mesh.points[static_cast<std::size_t>(column_point(result, c, 0))];
-    top[static_cast<std::size_t>(c)] = result.mesh.points[static_cast<std::size_t>(column_point(result, c, 1))];
-  }
-  cells = junction_cells(front, junction, bottom, top);
-  return {column_point(result, f.columns[0], 0), column_point(result, f.columns[1], 0),
-          column_point(result, f.columns[2], 0), column_point(result, f.columns[0], 1),
-          column_point(result, f.columns[1], 1), column_point(result, f.columns[2], 1),
-          column_point(result, f.columns[3], 1), -1};
-}
-
-// The first cell of a split face: the pieces of its cut cell about a new centre point.
-void add_junction_cells(const Front& front, const Junction& junction, BoundaryLayer& result) {
-  JunctionCells cells;
-  std::array<Index, 8> global = junction_indices(front, junction, result, cells);
-  global[centre] = static_cast<Index>(result.mesh.points.size());
-  result.mesh.points.push_back(cells.points[centre]);
-  const int patch = front.faces[static_cast<std::size_t>(junction.face)].patch;
-  for (const JunctionCell& cell : cells.cells) {
-    std::vector<Index> nodes;
-    for (int local : cell.nodes) nodes.push_back(global[static_cast<std::size_t>(local)]);
-    result.mesh.add_cell(cell.type, nodes.data(), patch);
-    (cell.type == CellType::pyramid ? result.pyramid_face : result.tetrahedron_face).push_back(junction.face);
-  }
-}
-
 // Adds a side face; one whose first two (or last two) nodes coincide, where the two
 // lines of a split or wrap face start at one point, is the triangle of the others.
 void add_side_face(MixedMesh& mesh, const std::array<Index, 4>& nodes, int marker) {
   if (nodes[0] == nodes[1] || nodes[2] == nodes[3]) {
-    const std::array<Index, 3> triangle =
-        nodes[0] == nodes[1] ? std::array<Index, 3>{nodes[0], nodes[2], nodes[3]}
-                             : std::array<Index, 3>{nodes[0], nodes[1], nodes[2]};
+    const std::array<Index, 3> triangle = nodes[0] == nodes[1]
+                                              ? std::array<Index, 3>{nodes[0], nodes[2], nodes[3]}
+                                              : std::array<Index, 3>{nodes[0], nodes[1], nodes[2]};
     mesh.add_face(FaceType::triangle, triangle.data(), marker);
     return;
   }
@@ -72,11 +41,7 @@ void add_side_face(MixedMesh& mesh, const std::array<Index, 4>& nodes, int marke
 
 void add_swept_cell(const Front& front, int face, int layer, BoundaryLayer& result) {
   const FrontFace& f = front.faces[static_cast<std::size_t>(face)];
-  if (f.split && layer == 0) {
-    const Junction* junction = junction_of(front, face);
-    if (junction) add_junction_cells(front, *junction, result);
-    return;
-  }
+  if (f.split && layer == 0) return;  // add_junction_stacks cuts it with the cells above
   auto at = [&](int k, int level) {
     return column_point(result, f.columns[static_cast<std::size_t>(k)], level);
   };
@@ -104,6 +69,66 @@ void add_swept_cell(const Front& front, int face, int layer, BoundaryLayer& resu
   result.mesh.add_cell(CellType::prism, nodes.data(), f.patch);
   result.prism_face.push_back(face);
   result.prism_layer.push_back(layer);
+}
+
+void add_junction_stacks(const Front& front, BoundaryLayer& result) {
+  for (const Junction& junction : front.junctions) {
+    const FrontFace& f = front.faces[static_cast<std::size_t>(junction.face)];
+    const int grown = result.face_layers[static_cast<std::size_t>(junction.face)];
+    if (grown == 0) continue;
+    auto level = [&](int layer) {
+      std::array<Vector3, 4> corners;
+      for (std::size_t c = 0; c < 4; ++c)
+        corners[c] = result.mesh.points[static_cast<std::size_t>(column_point(result, f.columns[c], layer))];
+      return corners;
+    };
+    // The lowest stack whose worst piece is good (a tetrahedron's largest dihedral
+    // angle at most 160 degrees, the sliver pass's default target; a pyramid's corners
+    // as square), else the best one. The quality grows with the stack's height until it
+    // is about as high as wide, so a taller stack only trades hexahedra for pyramids.
+    // The top stays below the face's outermost cell, which the interface splits as
+    // every other outermost hexahedron.
+    const double good = std::sin(20.0 * std::acos(-1.0) / 180.0);
+    JunctionLevels levels{level(0), level(1)};
+    JunctionCells best = junction_cells(levels);
+    for (int layers = 2; layers < grown && best.quality < good; ++layers) {
+      levels.push_back(level(layers));
+      JunctionCells cells = junction_cells(levels);
+      if (cells.quality > best.quality) best = std::move(cells);
+    }
+    const int layers = best.layers();
+
+    // The hexahedra of the stack (layers 1 … layers - 1) leave the mesh.
+    CellBlock& hexahedra = result.mesh.block(CellType::hexahedron);
+    std::size_t kept = 0;
+    for (std::size_t cell = 0; cell < result.hexahedron_face.size(); ++cell) {
+      if (result.hexahedron_face[cell] == junction.face && result.hexahedron_layer[cell] < layers) continue;
+      std::copy_n(hexahedra.nodes.begin() + static_cast<std::ptrdiff_t>(8 * cell), 8,
+                  hexahedra.nodes.begin() + static_cast<std::ptrdiff_t>(8 * kept));
+      hexahedra.regions[kept] = hexahedra.regions[cell];
+      result.hexahedron_face[kept] = result.hexahedron_face[cell];
+      result.hexahedron_layer[kept] = result.hexahedron_layer[cell];
+      ++kept;
+    }
+    hexahedra.nodes.resize(8 * kept);
+    hexahedra.regions.resize(kept);
+    result.hexahedron_face.resize(kept);
+    result.hexahedron_layer.resize(kept);
+
+    std::vector<Index> global;
+    for (int layer = 0; layer <= layers; ++layer)
+      for (int c = 0; c < 4; ++c)
+        global.push_back(column_point(result, f.columns[static_cast<std::size_t>(c)], layer));
+    global.push_back(static_cast<Index>(result.mesh.points.size()));
+    result.mesh.points.push_back(best.points[static_cast<std::size_t>(best.centre_point())]);
+    for (const JunctionCell& cell : best.cells) {
+      std::vector<Index> nodes;
+      for (int local : cell.nodes) nodes.push_back(global[static_cast<std::size_t>(local)]);
+      result.mesh.add_cell(cell.type, nodes.data(), f.patch);
+      (cell.type == CellType::pyramid ? result.pyramid_face : result.tetrahedron_face)
+          .push_back(junction.face);
+    }
+  }
 }
 
 void add_boundary_faces(const Front& front, const MarchOptions& options, BoundaryLayer& result) {

@@ -139,6 +139,13 @@ void check_options(const MarchOptions& options) {
                 std::to_string(options.maximum_turn_degrees));
 }
 
+std::string degrees_text(double value) {
+  std::ostringstream stream;
+  stream.precision(1);
+  stream << std::fixed << value;
+  return stream.str();
+}
+
 std::string scientific(double value) {
   std::ostringstream stream;
   stream.precision(2);
@@ -722,6 +729,7 @@ BoundaryLayer march_layers(const SurfaceMesh& surface, const MarchOptions& optio
                   std::to_string(bad.size()) + " faces stopped");
     if (!any) break;
   }
+  march_detail::add_junction_stacks(front, result);
   march_detail::add_boundary_faces(front, options, result);
 
   report.layers_completed = *std::min_element(result.face_layers.begin(), result.face_layers.end());
@@ -736,11 +744,18 @@ BoundaryLayer march_layers(const SurfaceMesh& surface, const MarchOptions& optio
   }
   report.stopped_nodes = static_cast<int>(std::count(node_stopped.begin(), node_stopped.end(), 1));
   report.junctions = static_cast<int>(result.tetrahedron_face.size() / 2);
-  for (CellType type : {CellType::pyramid, CellType::tetrahedron})
-    for (std::size_t cell = 0; cell < result.mesh.cell_count(type); ++cell)
-      report.junction_minimum_scaled_jacobian =
-          std::min(report.junction_minimum_scaled_jacobian,
-                   cell_shape(type, result.mesh.points, result.mesh.cell(type, cell)).min_corner_jacobian);
+  for (std::size_t cell = 0; cell < result.mesh.cell_count(CellType::pyramid); ++cell)
+    report.junction_minimum_scaled_jacobian =
+        std::min(report.junction_minimum_scaled_jacobian,
+                 cell_shape(CellType::pyramid, result.mesh.points, result.mesh.cell(CellType::pyramid, cell))
+                     .min_corner_jacobian);
+  for (std::size_t cell = 0; cell < result.mesh.cell_count(CellType::tetrahedron); ++cell) {
+    const Index* t = result.mesh.cell(CellType::tetrahedron, cell);
+    auto point = [&](int k) { return result.mesh.points[static_cast<std::size_t>(t[k])]; };
+    report.junction_largest_dihedral_degrees =
+        std::max(report.junction_largest_dihedral_degrees,
+                 largest_dihedral_degrees(point(0), point(1), point(2), point(3)));
+  }
   report.seconds = stopwatch.seconds();
   if (log) {
     log->info("march: " + std::to_string(report.layers_completed) + " of " +
@@ -751,8 +766,11 @@ BoundaryLayer march_layers(const SurfaceMesh& surface, const MarchOptions& optio
     if (report.junctions > 0)
       log->info("march: " + std::to_string(report.junctions) +
                 " junction(s) of a sheet's free edge with the wall closed; smallest scaled Jacobian of their "
-                "cut first cells " +
-                scientific(report.junction_minimum_scaled_jacobian));
+                "pyramids " +
+                scientific(report.junction_minimum_scaled_jacobian) +
+                ", largest dihedral angle of their "
+                "tetrahedra " +
+                degrees_text(report.junction_largest_dihedral_degrees) + " deg");
     for (const StoppedRegion& region : report.stopped)
       log->warning("march: " + std::to_string(region.faces) + " faces stopped at layer " +
                    std::to_string(region.layer) + " near " + point_text(region.location) + " (" +

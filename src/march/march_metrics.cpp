@@ -36,9 +36,9 @@ MarchMetrics measure_march(const BoundaryLayer& layer, const SurfaceMesh& surfac
     for (std::size_t cell = 0; cell < mesh.cell_count(type); ++cell) {
       const CellShape shape = cell_shape(type, mesh.points, mesh.cell(type, cell));
       metrics.invalid_cells += !shape.valid();
-      double& minimum = type == CellType::prism || type == CellType::hexahedron
-                            ? metrics.minimum_scaled_jacobian
-                            : metrics.junction_minimum_scaled_jacobian;
+      if (type == CellType::tetrahedron) continue;  // the junction's needle (march_layers.hpp)
+      double& minimum = type == CellType::pyramid ? metrics.junction_minimum_scaled_jacobian
+                                                  : metrics.minimum_scaled_jacobian;
       minimum = std::min(minimum, shape.min_corner_jacobian);
     }
 

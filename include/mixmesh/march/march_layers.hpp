@@ -96,9 +96,9 @@ struct MarchOptions {
 
 // Nodes whose growth stopped early, summarised for the report.
 struct StoppedRegion {
-  int layer = 0;              // layer the columns stopped at
-  int faces = 0;              // surface faces whose column stopped there
-  Vector3 location{0, 0, 0};  // centre of those faces on the wall
+  int layer = 0;                // layer the columns stopped at
+  int faces = 0;                // surface faces whose column stopped there
+  Vector3 location{0, 0, 0};    // centre of those faces on the wall
   double thickness_lost = 0.0;  // metres: the wall steps of the layers they did not reach
 };
 
@@ -117,10 +117,13 @@ struct MarchReport {
   int corrector_iterations = 0;
   double corrector_change = 0.0;
   // Junctions closed (a wall fan across a sheet meeting the sheet's free edge: the tip
-  // trailing edge) and the smallest corner Jacobian / edge lengths of the pyramids and
-  // tetrahedra of their cut first cells (1 when there are none).
+  // trailing edge), the smallest corner Jacobian / edge lengths of the pyramids of their
+  // cut stacks (1 when there are none) and the largest dihedral angle of their two
+  // tetrahedra (0 when there are none; the one on the wrap's triangle is a needle, whose
+  // scaled Jacobian is small by design).
   int junctions = 0;
   double junction_minimum_scaled_jacobian = 1.0;
+  double junction_largest_dihedral_degrees = 0.0;
   double seconds = 0.0;
 };
 

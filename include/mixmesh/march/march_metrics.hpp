@@ -14,10 +14,8 @@ struct MarchMetrics {
   // Smallest corner Jacobian / edge lengths over the hexahedra and prisms (the swept
   // cells of the columns, which both methods build the same way).
   double minimum_scaled_jacobian = 0.0;
-  // The same over the pyramids and tetrahedra that cut the first cell of a split face at
-  // a junction (march_layers.hpp); 1 when there are none. These cells bridge the lines
-  // above and below a sheet across one wall triangle in the first layer, so they are
-  // as thin as the first spacing and as long as that triangle.
+  // The same over the pyramids that cut the stack of a split face at a junction
+  // (march_layers.hpp); 1 when there are none.
   double junction_minimum_scaled_jacobian = 1.0;
   // Angle between the first segment of a marching line and the wall normal (the
   // angle-weighted normal of the wall faces around the node), over the lines of the
