@@ -464,7 +464,12 @@ class SliverRemoval {
     const int start = complex_.locate(t, x);
     if (start < 0) return;
     complex_.circumsphere_cavity(x, start, 64, cavity_);
-    if (std::find(cavity_.begin(), cavity_.end(), t) == cavity_.end()) return;  // would not mend t
+    // A flat sliver's circumsphere is nearly a plane and may leave x out: a sliver whose
+    // four points lie in one plane (the sides of a row of caps over a sheet's cells,
+    // where TetGen joins two triangulations of that plane by flat tetrahedra) got no
+    // cavity at all. It is taken in anyway; the star-shape growth and the volume check
+    // below still judge the cavity.
+    if (std::find(cavity_.begin(), cavity_.end(), t) == cavity_.end()) cavity_.push_back(t);
     if (!complex_.make_star_shaped(x, 96, cavity_)) return;
     Change change;
     change.operation = Operation::point_insertion;
