@@ -3,7 +3,6 @@
 // an output that could not be written.
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <memory>
 #include <string>
@@ -35,14 +34,6 @@ struct CheckArguments {
   CheckOptions options;
 };
 
-void write_text(const std::filesystem::path& path, const std::string& text) {
-  write_atomically(path, [&](const std::filesystem::path& temporary) {
-    std::ofstream file(temporary);
-    file << text;
-    if (!file.flush()) throw Error(temporary.string() + ": cannot write");
-  });
-}
-
 void write_histograms(const std::string& json, const CheckArguments& arguments) {
   const std::filesystem::path folder = find_plot_scripts(histogram_script);
   if (folder.empty())
@@ -56,7 +47,7 @@ void write_histograms(const std::string& json, const CheckArguments& arguments) 
   if (temporary) {
     data = png;
     data += ".data.json";
-    write_text(data, json);
+    write_text_atomically(data, json);
   }
   try {
     write_atomically(png, [&](const std::filesystem::path& output) {
@@ -93,7 +84,7 @@ int run_check(const CheckArguments& arguments) {
   const bool outputs = !arguments.json.empty() || !arguments.histograms.empty();
   const std::string json = outputs ? format_json(mesh, report, context) : std::string();
   try {
-    if (!arguments.json.empty()) write_text(arguments.json, json);
+    if (!arguments.json.empty()) write_text_atomically(arguments.json, json);
     if (!arguments.histograms.empty()) write_histograms(json, arguments);
   } catch (const Error& error) {  // the verdict stands, but what was asked for is missing
     std::cerr << "mixmesh: error: " << error.what() << '\n';

@@ -1,5 +1,6 @@
 #include "mixmesh/core/atomic_file.hpp"
 
+#include <fstream>
 #include <random>
 #include <string>
 
@@ -23,6 +24,14 @@ void write_atomically(const fs::path& path, const std::function<void(const fs::p
     fs::remove(temporary, ignored);
     throw;
   }
+}
+
+void write_text_atomically(const fs::path& path, const std::string& text) {
+  write_atomically(path, [&](const fs::path& temporary) {
+    std::ofstream file(temporary);
+    file << text;
+    if (!file.flush()) throw Error(path.string() + ": cannot write");
+  });
 }
 
 }  // namespace mixmesh

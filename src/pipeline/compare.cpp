@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cstdio>
-#include <fstream>
 #include <iomanip>
 #include <set>
 #include <sstream>
@@ -43,14 +42,6 @@ std::string ratio_text(const CompareRow& row, const std::vector<CompareRow>& row
   char text[32];
   std::snprintf(text, sizeof text, "%.1f %%", 100.0 * point_ratio_to_hybrid(row, rows));
   return text;
-}
-
-void write_text(const std::filesystem::path& path, const std::string& text) {
-  write_atomically(path, [&](const std::filesystem::path& temporary) {
-    std::ofstream file(temporary);
-    file << text;
-    if (!file.flush()) throw Error(path.string() + ": cannot write");
-  });
 }
 
 }  // namespace
@@ -234,7 +225,7 @@ void write_compare_csv(const std::filesystem::path& path, const std::vector<Comp
       if (has_hybrid(*rows)) csv << std::setprecision(6) << point_ratio_to_hybrid(row, *rows);
       csv << '\n';
     }
-  write_text(path, csv.str());
+  write_text_atomically(path, csv.str());
 }
 
 void write_compare_json(const std::filesystem::path& path, const std::vector<CompareRow>& measured) {
@@ -263,7 +254,7 @@ void write_compare_json(const std::filesystem::path& path, const std::vector<Com
     json << (rows == &measured ? "  ],\n" : "  ]\n");
   }
   json << "}\n";
-  write_text(path, json.str());
+  write_text_atomically(path, json.str());
 }
 
 CutWindow cut_window(const WingDefinition& wing, double span_fraction, double margin) {

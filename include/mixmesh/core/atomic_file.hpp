@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <functional>
+#include <string>
 
 namespace mixmesh {
 
@@ -13,5 +14,8 @@ namespace mixmesh {
 // extension, so writers that choose their format by extension still work.
 void write_atomically(const std::filesystem::path& path,
                       const std::function<void(const std::filesystem::path&)>& write);
+
+// Writes `text` as the whole of path, atomically; throws mixmesh::Error naming path.
+void write_text_atomically(const std::filesystem::path& path, const std::string& text);
 
 }  // namespace mixmesh
