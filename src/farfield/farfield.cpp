@@ -7,8 +7,8 @@
 
 #include "farfield/farfield_parts.hpp"
 #include "mixmesh/core/error.hpp"
-#include "mixmesh/interface/interface_split.hpp"
 #include "mixmesh/mesh/cell_geometry.hpp"
+#include "mixmesh/mesh/face_connectivity.hpp"
 
 namespace mixmesh {
 
@@ -140,7 +140,7 @@ FarFieldResult farfield(const FarFieldInput& input, const FarFieldOptions& optio
   const double farfield_size = options.farfield_size_in_chords * result.chord;
 
   // An open hull must be open along the symmetry plane only.
-  const std::vector<std::array<Index, 2>> footprint = hull_free_edges(hull);
+  const std::vector<std::array<Index, 2>> footprint = triangle_free_edges(hull);
   const bool symmetric = !footprint.empty();
   for (const auto& edge : footprint)
     for (Index node : edge)

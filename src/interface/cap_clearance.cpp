@@ -12,6 +12,7 @@
 
 #include "mixmesh/interface/interface_split.hpp"
 #include "mixmesh/mesh/cell_geometry.hpp"
+#include "mixmesh/mesh/face_connectivity.hpp"
 
 namespace mixmesh::interface_detail {
 
@@ -66,7 +67,7 @@ std::size_t lower_crossing_caps(MixedMesh& mesh, const std::vector<std::array<In
   // of the mesh. There a cap stands no higher than its distance from the footprint (and
   // not below its lowest height): the caps rise from the plane at 45 degrees.
   std::vector<Segment3> footprint;
-  for (const auto& edge : hull_free_edges(hull))
+  for (const auto& edge : triangle_free_edges(hull))
     footprint.emplace_back(cgal_point(mesh.points[static_cast<std::size_t>(edge[0])]),
                            cgal_point(mesh.points[static_cast<std::size_t>(edge[1])]));
   if (!footprint.empty()) {

@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <array>
+#include <map>
 #include <unordered_map>
+#include <utility>
 
 namespace mixmesh {
 
@@ -171,6 +173,23 @@ FaceConnectivity match_faces(const MixedMesh& mesh) {
     }
   }
   return result;
+}
+
+std::vector<std::array<Index, 2>> triangle_free_edges(const std::vector<std::array<Index, 3>>& triangles) {
+  // Undirected edge → (use count, the directed edge as first met).
+  std::map<std::pair<Index, Index>, std::pair<int, std::array<Index, 2>>> edges;
+  for (const auto& triangle : triangles) {
+    for (int corner = 0; corner < 3; ++corner) {
+      const Index from = triangle[static_cast<std::size_t>(corner)];
+      const Index to = triangle[static_cast<std::size_t>((corner + 1) % 3)];
+      auto& entry = edges[{std::min(from, to), std::max(from, to)}];
+      if (entry.first++ == 0) entry.second = {from, to};
+    }
+  }
+  std::vector<std::array<Index, 2>> free_edges;
+  for (const auto& [key, entry] : edges)
+    if (entry.first == 1) free_edges.push_back(entry.second);
+  return free_edges;
 }
 
 }  // namespace mixmesh

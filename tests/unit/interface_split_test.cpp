@@ -7,6 +7,7 @@
 
 #include "mixmesh/core/error.hpp"
 #include "mixmesh/interface/interface_split.hpp"
+#include "mixmesh/mesh/face_connectivity.hpp"
 #include "reference_cells.hpp"
 
 using namespace mixmesh;
@@ -114,7 +115,7 @@ TEST(InterfaceSplit, BlockOfThreeByThreeByTwoStaysConformingWithTheInnerLayer) {
     for (int region : result.mesh.block(CellType::pyramid).regions) EXPECT_EQ(region, 7);
     ASSERT_EQ(result.hull.size(), 18u);
     // The hull is a disc: its free edges are the 12 edges of the block's top rim.
-    EXPECT_EQ(hull_free_edges(result.hull).size(), 12u);
+    EXPECT_EQ(triangle_free_edges(result.hull).size(), 12u);
     // Side quads of the split layer keep their farfield tag: 4 sides × 3 (inner) + 4 × 3 (outer).
     EXPECT_EQ(result.mesh.face_count(FaceType::quad), 24u + 9u);
     expect_sound_split(input, result);
@@ -198,8 +199,8 @@ TEST(InterfaceSplit, BadListingsAreRejectedWithTheCellNamed) {
 
 TEST(InterfaceSplit, FreeEdgesOfAClosedHullAreNone) {
   const std::vector<std::array<Index, 3>> tetrahedron_surface = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}};
-  EXPECT_TRUE(hull_free_edges(tetrahedron_surface).empty());
-  const auto open = hull_free_edges({{0, 1, 2}});
+  EXPECT_TRUE(triangle_free_edges(tetrahedron_surface).empty());
+  const auto open = triangle_free_edges({{0, 1, 2}});
   EXPECT_EQ(open.size(), 3u);
 }
 
@@ -375,7 +376,7 @@ TEST(InterfaceSplit, CellsOfMarkedOuterQuadsAreCappedNotSplit) {
   EXPECT_TRUE(match_faces(result.mesh).conforming());
   // 14 split tops of 2 triangles, 1 cap of 4; open only along the footprint's 16 edges.
   EXPECT_EQ(result.hull.size(), 32u);
-  EXPECT_EQ(hull_free_edges(result.hull).size(), 16u);
+  EXPECT_EQ(triangle_free_edges(result.hull).size(), 16u);
   // Without the marker every cell is split.
   InterfaceOptions plain;
   plain.capped_marker.clear();

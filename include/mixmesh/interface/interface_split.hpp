@@ -115,8 +115,4 @@ struct InterfaceResult {
 InterfaceResult split_interface(const MixedMesh& mesh, const OuterLayer& layer,
                                 const InterfaceOptions& options = {});
 
-// The edges of the hull used by exactly one hull triangle (the footprint on a symmetry
-// plane, or the free edges of an open hull), each oriented as in its triangle.
-std::vector<std::array<Index, 2>> hull_free_edges(const std::vector<std::array<Index, 3>>& hull);
-
 }  // namespace mixmesh

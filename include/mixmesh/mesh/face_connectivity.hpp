@@ -2,6 +2,7 @@
 // which lie on the boundary, and what is non-conforming.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <vector>
 
@@ -42,5 +43,9 @@ std::array<Index, 4> sorted_face_key(const Index* nodes, int count);
 
 // The nodes of a cell face, in outward order; returns the node count (3 or 4).
 int face_nodes(const MixedMesh& mesh, const CellFace& face, Index* nodes);
+
+// The edges used by exactly one of `triangles` (of a hull: its footprint on a symmetry
+// plane, or the free edges of an open hull), each oriented as in its triangle.
+std::vector<std::array<Index, 2>> triangle_free_edges(const std::vector<std::array<Index, 3>>& triangles);
 
 }  // namespace mixmesh
