@@ -52,11 +52,13 @@ class IdwMethod : public DeformationMethod {
       IdwBody& target = input.bodies[static_cast<std::size_t>(body)];
       target.positions.push_back(mesh.points[node]);
       target.displacements.push_back(boundary.displacement[node]);
-      target.rotations.push_back(Eigen::AngleAxisd(boundary.rotation[node].norm(),
-                                                   boundary.rotation[node].norm() > 0.0
-                                                       ? Vector3(boundary.rotation[node].normalized())
-                                                       : Vector3::UnitZ())
-                                     .toRotationMatrix());
+      // The fit by direction where the motion has one (mode and surface motions): the
+      // rotation form carries it over the distance to the body (boundary_motion.cpp).
+      const Vector3& turn =
+          boundary.rotation_by_direction.empty() ? boundary.rotation[node] : boundary.rotation_by_direction[node];
+      target.rotations.push_back(
+          Eigen::AngleAxisd(turn.norm(), turn.norm() > 0.0 ? Vector3(turn.normalized()) : Vector3::UnitZ())
+              .toRotationMatrix());
     }
     // The boundary faces whose nodes all lie on one set: its surface, for the distances
     // of the rotation form's ψ.

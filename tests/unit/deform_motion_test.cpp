@@ -250,6 +250,46 @@ TEST(DeformBoundary, ModeShapeByIndexAndByPositionAgree) {
   EXPECT_GT(first.rotation[0].z(), 0.0);
 }
 
+TEST(DeformBoundary, RotationByDirectionFollowsTheSlopeWhereAStarIsThin) {
+  // A wall strip like the faces at a closed trailing edge: rows 1.4 mm apart across the
+  // edge, 0.1 m apart along it, bent along the edge (z = c y², no slope across it). A
+  // node on the edge row sees its neighbours along the edge 0.1 m away and the row ahead
+  // 1.4 mm away. The bending is no rigid motion (c · 0.01 m = 0.5 mm off over 0.1 m), and
+  // the plain fit turns the edge node about the edge (y) to explain that on its
+  // diagonal neighbours, 1.4 mm ahead of it; weighted by direction it keeps to the slope.
+  const std::vector<double> xs{-0.0028, -0.0014, 0.0};
+  const std::vector<double> ys{0.0, 0.1, 0.2, 0.3};
+  MixedMesh mesh;
+  for (double y : ys)
+    for (double x : xs) mesh.points.emplace_back(x, y, 0.0);
+  auto at = [&](std::size_t i, std::size_t j) { return static_cast<Index>(j * xs.size() + i); };
+  const int wall = mesh.marker("wall");
+  for (std::size_t j = 0; j + 1 < ys.size(); ++j)
+    for (std::size_t i = 0; i + 1 < xs.size(); ++i) {
+      const Index quad[4]{at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)};
+      mesh.add_face(FaceType::quad, quad, wall);
+    }
+  const double c = 0.05;
+  Body bend;
+  bend.markers = {"wall"};
+  bend.law = MotionLaw::mode;
+  for (std::size_t node = 0; node < mesh.points.size(); ++node) {
+    bend.field.nodes.push_back(static_cast<Index>(node));
+    const double y = mesh.points[node].y();
+    bend.field.values.push_back(Vector3(0.0, 0.0, c * y * y));
+  }
+  Motion motion;
+  motion.bodies = {bend};
+  const BoundaryMotion boundary = boundary_motion(mesh, mesh, motion, 1);
+  ASSERT_EQ(boundary.rotation_by_direction.size(), mesh.points.size());
+  const auto edge = static_cast<std::size_t>(at(2, 1));  // on the edge row, y = 0.1
+  const double slope = std::atan(2.0 * c * 0.1);         // about x
+  EXPECT_NEAR(boundary.rotation_by_direction[edge].x(), slope, 0.1 * slope);
+  EXPECT_LT(std::abs(boundary.rotation_by_direction[edge].y()), 0.05 * slope);
+  // The plain fit (kept for ARA and the layer transport) turns it about the edge.
+  EXPECT_GT(std::abs(boundary.rotation[edge].y()), 10.0 * std::abs(boundary.rotation_by_direction[edge].y()));
+}
+
 TEST(DeformSequence, IncrementalStepsDeformThePreviousMesh) {
   const MixedMesh mesh = testing::planar_o_grid(OGrid{});
   Body body;

@@ -49,6 +49,12 @@ struct BoundaryMotion {
   // least-squares fit of the node's boundary neighbours for mode and surface
   // motions); zero for fixed nodes and elsewhere.
   std::vector<Vector3> rotation;
+  // Mode and surface motions: the same fit with each neighbour weighted by its direction
+  // (1/r², detail::fit_rotation), for IDW, which carries a node's rotation over a lever
+  // arm of metres; empty for rigid motions (`rotation` is exact there). ARA keeps
+  // `rotation`: its faces average their nodes' rotations, and on the ONERA M6 bending
+  // mode the weighted fit left one far-field tetrahedron by the root plane folded.
+  std::vector<Vector3> rotation_by_direction;
   // Sliding nodes: unit normal of their symmetry plane; zero elsewhere.
   std::vector<Vector3> slide_normal;
   // Prescribed nodes of a moving body: its index in Motion::bodies; -1 elsewhere.
