@@ -4,6 +4,7 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <filesystem>
 
 namespace mixmesh::cli {
 
@@ -16,5 +17,11 @@ void add_surface_command(CLI::App& application);
 void add_deform_command(CLI::App& application);
 void add_march_command(CLI::App& application);
 void add_compare_command(CLI::App& application);
+
+// Where --keep-invalid writes a mesh that failed its checks, for inspection: the output
+// with "invalid" before its extension (wing.vtu -> wing.invalid.vtu).
+inline std::filesystem::path kept_invalid_path(const std::filesystem::path& output) {
+  return output.parent_path() / (output.stem().string() + ".invalid" + output.extension().string());
+}
 
 }  // namespace mixmesh::cli

@@ -46,9 +46,9 @@ std::string histogram(const deform::QualitySummary& summary) {
 // OUT for one step; OUT's stem + "_0003" + extension for step 3 of a sequence; the
 // word "invalid" before the extension for meshes written with --keep-invalid.
 std::filesystem::path step_path(const std::filesystem::path& output, int step, int steps, bool valid) {
-  std::string stem = deform::step_stem(output.stem().string(), step, steps);
-  if (!valid) stem += ".invalid";
-  return output.parent_path() / (stem + output.extension().string());
+  const std::string stem = deform::step_stem(output.stem().string(), step, steps);
+  const std::filesystem::path path = output.parent_path() / (stem + output.extension().string());
+  return valid ? path : kept_invalid_path(path);
 }
 
 void write_collection(const std::filesystem::path& file, const std::vector<std::filesystem::path>& steps) {

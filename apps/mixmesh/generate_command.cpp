@@ -36,7 +36,7 @@ void add_generate_command(CLI::App& application) {
                       "Write the far-field boundary after each preconditioning transform (boundary.vtk, "
                       "sheared.vtk, preconditioned.vtk) to this folder, as in Wild Fig. 4");
   command->add_flag("--keep-invalid", arguments->keep_invalid,
-                    "If the assembled mesh is invalid, still write it, as NAME.INVALID.vtu, for inspection");
+                    "If the assembled mesh is invalid, still write it, as NAME.invalid.vtu, for inspection");
   command->callback([arguments] {
     GenerateOptions options = load_generate_options(arguments->config, arguments->settings);
     if (!arguments->output_folder.empty()) options.output.folder = arguments->output_folder;
@@ -49,7 +49,7 @@ void add_generate_command(CLI::App& application) {
     if (!result.validity.valid()) {
       std::cerr << validity_details(result.validity);
       if (arguments->keep_invalid) {
-        const auto path = options.output.folder / (options.output.name + ".INVALID.vtu");
+        const auto path = kept_invalid_path(options.output.folder / (options.output.name + ".vtu"));
         std::filesystem::create_directories(options.output.folder);
         write_mesh(result.mesh, path);
         log.warning("wrote the invalid mesh to " + path.string());

@@ -55,8 +55,7 @@ void run_march(const MarchArguments& arguments) {
   if (!validity.valid()) {
     std::cerr << validity_details(validity);
     if (arguments.keep_invalid) {
-      std::filesystem::path kept = arguments.output;
-      kept.replace_extension(".INVALID.vtu");
+      const std::filesystem::path kept = kept_invalid_path(arguments.output);
       try {  // the error below is the one to report, not a failed write
         if (kept.has_parent_path()) std::filesystem::create_directories(kept.parent_path());
         write_mesh(layer.mesh, kept);
@@ -105,7 +104,7 @@ void add_march_command(CLI::App& application) {
   command->add_flag("--compare", arguments->compare,
                     "Also march the other method and print both methods' quality figures");
   command->add_flag("--keep-invalid", arguments->keep_invalid,
-                    "If the layers are invalid, write them to NAME.INVALID.vtu beside the output");
+                    "If the layers are invalid, write them beside the output with invalid before the extension");
   command->add_flag("-q,--quiet", arguments->quiet, "Print nothing but errors (and the --compare table)");
   command->add_flag("-v,--verbose", arguments->verbose,
                     "Also report every layer: corrector iterations, invalid cells and crossing faces");
