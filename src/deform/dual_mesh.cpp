@@ -8,22 +8,13 @@
 
 #include "mixmesh/core/error.hpp"
 #include "mixmesh/mesh/cell_geometry.hpp"
+#include "mixmesh/mesh/face_connectivity.hpp"
 
 namespace mixmesh::deform::detail {
 
 namespace {
 
 using Key = std::array<Index, 4>;
-
-Key sorted_key(const Index* nodes, int count) {
-  Key key{-1, -1, -1, -1};
-  for (int corner = 0; corner < count; ++corner) key[static_cast<std::size_t>(corner)] = nodes[corner];
-  for (int next = 1; next < count; ++next)
-    for (int slot = next;
-         slot > 0 && key[static_cast<std::size_t>(slot - 1)] > key[static_cast<std::size_t>(slot)]; --slot)
-      std::swap(key[static_cast<std::size_t>(slot - 1)], key[static_cast<std::size_t>(slot)]);
-  return key;
-}
 
 // The faces (planar: edges) of one cell as local node lists.
 int local_faces(const DualMesh& dual, std::size_t cell, std::array<std::array<Index, 4>, 6>& faces,
@@ -130,8 +121,8 @@ DualMesh build_dual_mesh(const MixedMesh& mesh) {
   for (std::size_t cell = 0; cell < dual.cell_count(); ++cell) {
     const int count = local_faces(dual, cell, faces, sizes);
     for (int face = 0; face < count; ++face) {
-      const Key key =
-          sorted_key(faces[static_cast<std::size_t>(face)].data(), sizes[static_cast<std::size_t>(face)]);
+      const Key key = sorted_face_key(faces[static_cast<std::size_t>(face)].data(),
+                                      sizes[static_cast<std::size_t>(face)]);
       ++start[static_cast<std::size_t>(key[0]) + 1];
     }
   }
@@ -142,8 +133,8 @@ DualMesh build_dual_mesh(const MixedMesh& mesh) {
     for (std::size_t cell = 0; cell < dual.cell_count(); ++cell) {
       const int count = local_faces(dual, cell, faces, sizes);
       for (int face = 0; face < count; ++face) {
-        const Key key =
-            sorted_key(faces[static_cast<std::size_t>(face)].data(), sizes[static_cast<std::size_t>(face)]);
+        const Key key = sorted_face_key(faces[static_cast<std::size_t>(face)].data(),
+                                        sizes[static_cast<std::size_t>(face)]);
         records[fill[static_cast<std::size_t>(key[0])]++] = {key, static_cast<Index>(cell),
                                                              static_cast<std::uint8_t>(face)};
       }
@@ -169,7 +160,7 @@ DualMesh build_dual_mesh(const MixedMesh& mesh) {
   // Owner cell of every tagged boundary face.
   dual.face_cell.assign(dual.face_count(), -1);
   for (std::size_t face = 0; face < dual.face_count(); ++face) {
-    const Key key = sorted_key(dual.boundary_nodes(face), dual.face_size(face));
+    const Key key = sorted_face_key(dual.boundary_nodes(face), dual.face_size(face));
     for (Index node : key)
       if (node >= static_cast<Index>(dual.point_count))
         throw Error("boundary face refers to a missing point");

@@ -15,11 +15,10 @@ namespace mixmesh {
 namespace {
 
 using farfield_parts::Triangle;
-using FaceKey = std::array<Index, 3>;
+using FaceKey = std::array<Index, 4>;  // sorted_face_key of a triangle
 
-FaceKey sorted(FaceKey key) {
-  std::sort(key.begin(), key.end());
-  return key;
+FaceKey triangle_key(const std::array<Index, 3>& triangle) {
+  return sorted_face_key(triangle.data(), 3);
 }
 
 std::string seconds_text(double seconds) {
@@ -72,7 +71,7 @@ MetricLengthReport hull_metric_lengths(const MixedMesh& mesh, const std::vector<
   for (std::size_t entry = 0; entry < metric_nodes.size(); ++entry)
     metric_of[metric_nodes[entry]] = &metrics[entry];
   std::map<FaceKey, std::size_t> hull_face;
-  for (std::size_t face = 0; face < hull.size(); ++face) hull_face[sorted(hull[face])] = face;
+  for (std::size_t face = 0; face < hull.size(); ++face) hull_face[triangle_key(hull[face])] = face;
 
   std::vector<double> lengths;
   const std::size_t count = mesh.cell_count(CellType::tetrahedron);
@@ -80,10 +79,10 @@ MetricLengthReport hull_metric_lengths(const MixedMesh& mesh, const std::vector<
     const Index* nodes = mesh.cell(CellType::tetrahedron, cell);
     for (int face = 0; face < tetrahedron_descriptor.face_count; ++face) {
       const LocalFace& local = tetrahedron_descriptor.faces[static_cast<std::size_t>(face)];
-      const FaceKey key = sorted({nodes[local.nodes[0]], nodes[local.nodes[1]], nodes[local.nodes[2]]});
+      const FaceKey key = triangle_key({nodes[local.nodes[0]], nodes[local.nodes[1]], nodes[local.nodes[2]]});
       if (!hull_face.count(key)) continue;
       std::vector<Matrix3> face_metrics;
-      for (Index node : key) {
+      for (Index node : {key[0], key[1], key[2]}) {
         const auto found = metric_of.find(node);
         if (found != metric_of.end()) face_metrics.push_back(*found->second);
       }
@@ -403,9 +402,9 @@ FarFieldResult farfield(const FarFieldInput& input, const FarFieldOptions& optio
   const int farfield_marker = mesh.marker(options.farfield_marker);
   std::map<FaceKey, int> boundary_marker;  // -1: hull
   auto to_global = [&](const Triangle& triangle) {
-    return sorted({global[static_cast<std::size_t>(triangle[0])],
-                   global[static_cast<std::size_t>(triangle[1])],
-                   global[static_cast<std::size_t>(triangle[2])]});
+    return triangle_key({global[static_cast<std::size_t>(triangle[0])],
+                         global[static_cast<std::size_t>(triangle[1])],
+                         global[static_cast<std::size_t>(triangle[2])]});
   };
   for (const Triangle& triangle : hull) boundary_marker[to_global(triangle)] = -1;
   for (const Triangle& triangle : plane) boundary_marker[to_global(triangle)] = symmetry_marker;
@@ -416,7 +415,7 @@ FarFieldResult farfield(const FarFieldInput& input, const FarFieldOptions& optio
     for (int number = 0; number < tetrahedron_descriptor.face_count; ++number) {
       const LocalFace& local = tetrahedron_descriptor.faces[static_cast<std::size_t>(number)];
       const std::array<Index, 3> face = {nodes[local.nodes[0]], nodes[local.nodes[1]], nodes[local.nodes[2]]};
-      auto& entry = faces[sorted(face)];
+      auto& entry = faces[triangle_key(face)];
       if (entry.first++ == 0) entry.second = face;
     }
   }

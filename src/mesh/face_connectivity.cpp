@@ -31,11 +31,14 @@ int winding(const Index* nodes, int count) {
 }  // namespace
 
 std::array<Index, 4> sorted_face_key(const Index* nodes, int count) {
-  // Insertion sort of three or four entries (std::sort on a tiny array trips
-  // GCC 12's array-bounds analysis).
-  std::array<Index, 4> key{nodes[0], nodes[1], nodes[2], count == 4 ? nodes[3] : -1};
+  // Insertion sort of two to four entries (std::sort on a tiny array trips GCC 12's
+  // array-bounds analysis).
+  std::array<Index, 4> key{-1, -1, -1, -1};
+  for (int corner = 0; corner < count; ++corner) key[static_cast<std::size_t>(corner)] = nodes[corner];
   for (int next = 1; next < count; ++next)
-    for (int slot = next; slot > 0 && key[slot - 1] > key[slot]; --slot) std::swap(key[slot - 1], key[slot]);
+    for (int slot = next;
+         slot > 0 && key[static_cast<std::size_t>(slot - 1)] > key[static_cast<std::size_t>(slot)]; --slot)
+      std::swap(key[static_cast<std::size_t>(slot - 1)], key[static_cast<std::size_t>(slot)]);
   return key;
 }
 
