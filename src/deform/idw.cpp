@@ -18,26 +18,16 @@
 #include "mixmesh/core/error.hpp"
 #include "mixmesh/deform/idw_rigid_fit.hpp"
 #include "mixmesh/deform/idw_tree.hpp"
+#include "mixmesh/mesh/point_cloud.hpp"
 #include "deform/wall_faces.hpp"
 
 namespace mixmesh::deform {
 
 namespace {
 
-// nanoflann adaptor over one body's node positions.
-struct PointCloud {
-  const std::vector<Vector3>* points;
-  std::size_t kdtree_get_point_count() const { return points->size(); }
-  double kdtree_get_pt(std::size_t index, std::size_t dimension) const {
-    return (*points)[index][static_cast<Eigen::Index>(dimension)];
-  }
-  template <class Box>
-  bool kdtree_get_bbox(Box&) const {
-    return false;
-  }
-};
-using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, PointCloud>,
-                                                   PointCloud, 3, Index>;
+// k-d tree over one body's node positions.
+using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, PointCloud<>>,
+                                                   PointCloud<>, 3, Index>;
 
 // Leaf size of the rotation form's k-d trees (references and distances to the other
 // bodies): on 1 M points around 53 000 boundary nodes, 32 took 7.5 CPU-s, 10 took 9.0
@@ -60,7 +50,7 @@ struct NearestDistance {
 
   double distance(const KdTree& tree, const Vector3& point) {
     const Vector3* previous_nearest =
-        known ? &(*tree.dataset.points)[static_cast<std::size_t>(previous_index)] : nullptr;
+        known ? &(*tree.dataset.elements)[static_cast<std::size_t>(previous_index)] : nullptr;
     if (known && accuracy > 0.0) {
       const double upper = (point - *previous_nearest).norm();
       const double lower = previous_distance - (point - previous_point).norm();
@@ -419,11 +409,11 @@ void add_body_motion(const IdwInput& input, const IdwOptions& options, std::size
 }
 
 void deform_rotation(const IdwInput& input, const IdwOptions& options, IdwResult& result) {
-  std::vector<PointCloud> clouds(input.bodies.size());
+  std::vector<PointCloud<>> clouds(input.bodies.size());
   std::vector<std::unique_ptr<KdTree>> trees(input.bodies.size());
   for (std::size_t b = 0; b < input.bodies.size(); ++b) {
     if (input.bodies[b].positions.empty()) continue;
-    clouds[b].points = &input.bodies[b].positions;
+    clouds[b].elements = &input.bodies[b].positions;
     trees[b] = std::make_unique<KdTree>(3, clouds[b],
                                         nanoflann::KDTreeSingleIndexAdaptorParams(reference_leaf_size));
     trees[b]->buildIndex();

@@ -8,6 +8,8 @@
 #include <nanoflann.hpp>
 #include <numeric>
 
+#include "mixmesh/mesh/point_cloud.hpp"
+
 namespace mixmesh::deform::detail {
 
 namespace {
@@ -49,23 +51,12 @@ Vector3 closest_on_triangle(const Vector3& p, const Vector3& a, const Vector3& b
   return a + ab * (vb / denominator) + ac * (vc / denominator);
 }
 
-struct CentreCloud {
-  std::vector<Vector3> centres;
-  std::size_t kdtree_get_point_count() const { return centres.size(); }
-  double kdtree_get_pt(std::size_t index, std::size_t dimension) const {
-    return centres[index][static_cast<Eigen::Index>(dimension)];
-  }
-  template <class Box>
-  bool kdtree_get_bbox(Box&) const {
-    return false;
-  }
-};
-
-using Tree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, CentreCloud>,
-                                                 CentreCloud, 3, std::size_t>;
+using Tree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, PointCloud<>>,
+                                                 PointCloud<>, 3, std::size_t>;
 
 struct BoundaryTree {
-  CentreCloud cloud;
+  std::vector<Vector3> centres;
+  PointCloud<> cloud;             // over centres, once they are all in
   std::vector<Index> wall_index;  // cloud point → index into WallFaces::faces
   std::unique_ptr<Tree> tree;
 };
@@ -130,10 +121,11 @@ NearestFaces find_nearest_faces(const DualMesh& dual, const WallFaces& walls,
   std::vector<BoundaryTree> trees(static_cast<std::size_t>(walls.boundary_count));
   for (std::size_t wall = 0; wall < walls.faces.size(); ++wall) {
     BoundaryTree& tree = trees[static_cast<std::size_t>(walls.boundary[wall])];
-    tree.cloud.centres.push_back(face_centre(dual, static_cast<std::size_t>(walls.faces[wall]), points));
+    tree.centres.push_back(face_centre(dual, static_cast<std::size_t>(walls.faces[wall]), points));
     tree.wall_index.push_back(static_cast<Index>(wall));
   }
   for (BoundaryTree& tree : trees) {
+    tree.cloud.elements = &tree.centres;
     tree.tree = std::make_unique<Tree>(3, tree.cloud, nanoflann::KDTreeSingleIndexAdaptorParams(10));
     tree.tree->buildIndex();
   }

@@ -15,6 +15,7 @@
 
 #include "farfield/farfield_parts.hpp"
 #include "mixmesh/core/error.hpp"
+#include "mixmesh/mesh/point_cloud.hpp"
 
 namespace mixmesh::farfield_parts {
 
@@ -32,17 +33,10 @@ struct Candidate {
   bool on_plane;
 };
 
-struct CandidateCloud {
-  const std::vector<Candidate>* candidates;
-  std::size_t kdtree_get_point_count() const { return candidates->size(); }
-  double kdtree_get_pt(std::size_t index, std::size_t axis) const {
-    return (*candidates)[index].point(static_cast<Eigen::Index>(axis));
-  }
-  template <class Box>
-  bool kdtree_get_bbox(Box&) const {
-    return false;
-  }
+struct CandidatePoint {
+  const Vector3& operator()(const Candidate& candidate) const { return candidate.point; }
 };
+using CandidateCloud = PointCloud<Candidate, CandidatePoint>;
 using CandidateTree =
     nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, CandidateCloud>, CandidateCloud,
                                         3>;
@@ -61,17 +55,7 @@ class NearestPoint {
   }
 
  private:
-  struct Cloud {
-    const std::vector<Vector3>* points;
-    std::size_t kdtree_get_point_count() const { return points->size(); }
-    double kdtree_get_pt(std::size_t index, std::size_t axis) const {
-      return (*points)[index](static_cast<Eigen::Index>(axis));
-    }
-    template <class Box>
-    bool kdtree_get_bbox(Box&) const {
-      return false;
-    }
-  };
+  using Cloud = PointCloud<>;
   using Tree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, Cloud>, Cloud, 3>;
   std::vector<Vector3> points_;
   Cloud cloud_{&points_};
@@ -205,7 +189,7 @@ LayerPoints layer_points(const FarFieldInput& input, const std::vector<std::arra
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
     return candidates[a].spacing < candidates[b].spacing;
   });
-  const CandidateCloud cloud{&candidates};
+  const CandidateCloud cloud{&candidates, {}};
   CandidateTree tree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(16));
   tree.buildIndex();
   std::vector<char> alive(candidates.size(), 1);
