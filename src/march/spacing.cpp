@@ -32,8 +32,10 @@ double first_spacing_from_y_plus(double y_plus, double reynolds_number, double r
 std::vector<double> layer_steps(const SpacingOptions& options) {
   if (options.layer_count < 1)
     throw Error("march: layer count must be at least 1, got " + std::to_string(options.layer_count));
-  const double first = options.first_spacing > 0.0
-                           ? options.first_spacing
+  if (options.first_spacing && !(*options.first_spacing > 0.0))
+    throw Error("march: first spacing must be positive, got " + number(*options.first_spacing));
+  const double first = options.first_spacing
+                           ? *options.first_spacing
                            : first_spacing_from_y_plus(options.target_y_plus, options.reynolds_number,
                                                        options.reference_length);
   const auto count = static_cast<std::size_t>(options.layer_count);
@@ -50,7 +52,8 @@ std::vector<double> layer_steps(const SpacingOptions& options) {
   }
   // One-sided tanh stretching: s(t) = T (1 + tanh(delta (t - 1)) / tanh(delta)),
   // t = k / N; delta is chosen so that the first step equals the first spacing.
-  const double thickness = options.total_thickness;
+  if (!options.total_thickness) throw Error("march: tanh growth needs a total thickness");
+  const double thickness = *options.total_thickness;
   if (!(thickness > first * static_cast<double>(count)))
     throw Error("march: tanh growth needs a total thickness above layer count x first spacing (" +
                 number(first * static_cast<double>(count)) + " m), got " + number(thickness));

@@ -34,7 +34,7 @@ MarchOptions read_march_options(config::Section& table) {
   table.read("layers", spacing.layer_count, Bounds::at_least(1));
   double first_spacing = 0.0;
   table.read("first_spacing", first_spacing, Bounds::non_negative());
-  spacing.first_spacing = first_spacing > 0.0 ? first_spacing : -1.0;
+  if (first_spacing > 0.0) spacing.first_spacing = first_spacing;
   table.read("y_plus", spacing.target_y_plus, Bounds::positive());
   table.read("reynolds_number", spacing.reynolds_number, Bounds::positive());
   table.read("reference_length", spacing.reference_length, Bounds::positive());
@@ -44,7 +44,7 @@ MarchOptions read_march_options(config::Section& table) {
   table.read("growth_rate", spacing.growth_rate, Bounds::at_least(1.0));
   double thickness = 0.0;
   table.read("total_thickness", thickness, Bounds::non_negative());
-  spacing.total_thickness = thickness > 0.0 ? thickness : -1.0;
+  if (thickness > 0.0) spacing.total_thickness = thickness;
   std::string method = "smoothed";
   table.read_choice("method", method, {"smoothed", "normal"});
   options.method = method == "normal" ? MarchMethod::normal : MarchMethod::smoothed;

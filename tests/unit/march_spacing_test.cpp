@@ -62,6 +62,15 @@ TEST(MarchSpacing, RejectsInconsistentOptions) {
   options.first_spacing = 1e-3;
   options.total_thickness = 5e-3;  // thinner than 10 uniform first steps
   EXPECT_THROW(layer_steps(options), Error);
+  options.total_thickness.reset();  // tanh without a thickness
+  EXPECT_THROW(layer_steps(options), Error);
+  options.growth_law = GrowthLaw::geometric;
+  options.first_spacing = 0.0;  // given, but not positive: no silent y+ estimate
+  EXPECT_THROW(layer_steps(options), Error);
+  options.first_spacing.reset();  // absent: from y+
+  EXPECT_DOUBLE_EQ(layer_steps(options).front(), first_spacing_from_y_plus(options.target_y_plus,
+                                                                           options.reynolds_number,
+                                                                           options.reference_length));
 }
 
 }  // namespace

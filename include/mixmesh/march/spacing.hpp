@@ -2,6 +2,7 @@
 // target y+) and the growth law that turns it into one step per layer.
 #pragma once
 
+#include <optional>
 #include <vector>
 
 namespace mixmesh {
@@ -9,16 +10,16 @@ namespace mixmesh {
 enum class GrowthLaw { geometric, tanh };
 
 struct SpacingOptions {
-  // First spacing in metres; when <= 0 it comes from target_y_plus, reynolds_number
+  // First spacing in metres; when absent it comes from target_y_plus, reynolds_number
   // and reference_length (first_spacing_from_y_plus).
-  double first_spacing = -1.0;
+  std::optional<double> first_spacing;
   double target_y_plus = 1.0;
   double reynolds_number = 11.72e6;  // ONERA M6 test point, on the MAC
   double reference_length = 0.646;   // ONERA M6 mean aerodynamic chord (m)
   int layer_count = 32;
   GrowthLaw growth_law = GrowthLaw::geometric;
   double growth_rate = 1.25;      // geometric: step(k+1) = growth_rate * step(k)
-  double total_thickness = -1.0;  // tanh: required total thickness (m)
+  std::optional<double> total_thickness;  // tanh: required total thickness (m)
 };
 
 // Flat-plate estimate: Cf = 0.026 / Re^(1/7), u_tau = U sqrt(Cf / 2),
