@@ -18,7 +18,7 @@ struct SpacingOptions {
   double reference_length = 0.646;   // ONERA M6 mean aerodynamic chord (m)
   int layer_count = 32;
   GrowthLaw growth_law = GrowthLaw::geometric;
-  double growth_rate = 1.25;      // geometric: step(k+1) = growth_rate * step(k)
+  double growth_rate = 1.25;              // geometric: step(k+1) = growth_rate * step(k)
   std::optional<double> total_thickness;  // tanh: required total thickness (m)
 };
 
