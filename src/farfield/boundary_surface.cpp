@@ -14,7 +14,7 @@
 #include "farfield/farfield_parts.hpp"
 #include "mixmesh/core/error.hpp"
 
-namespace mixmesh::farfield_parts {
+namespace mixmesh::farfield_detail {
 
 double SizeField::operator()(const Vector3& point) const {
   double size = maximum;
@@ -296,4 +296,4 @@ std::vector<Triangle> symmetry_plane(double plane_y, const std::vector<Index>& r
   return triangles;
 }
 
-}  // namespace mixmesh::farfield_parts
+}  // namespace mixmesh::farfield_detail

@@ -14,7 +14,7 @@ namespace mixmesh {
 
 namespace {
 
-using farfield_parts::Triangle;
+using farfield_detail::Triangle;
 using FaceKey = std::array<Index, 4>;  // sorted_face_key of a triangle
 
 FaceKey triangle_key(const std::array<Index, 3>& triangle) {
@@ -179,7 +179,7 @@ FarFieldResult farfield(const FarFieldInput& input, const FarFieldOptions& optio
       }
     }
   for (std::size_t node = 0; node < points.size(); ++node) hull_size[node] /= hull_edges[node];
-  farfield_parts::SizeField size{{}, {}, options.size_gradient, farfield_size};
+  farfield_detail::SizeField size{{}, {}, options.size_gradient, farfield_size};
   // Sources: every footprint node and at most ~2000 hull nodes, so evaluating the field
   // stays cheap; the growth is slow, so a sparse sample changes sizes little.
   std::vector<char> is_source(points.size(), 0);
@@ -192,7 +192,7 @@ FarFieldResult farfield(const FarFieldInput& input, const FarFieldOptions& optio
       size.sizes.push_back(hull_size[node]);
     }
 
-  farfield_parts::LayerPoints layers;
+  farfield_detail::LayerPoints layers;
   if (options.sizing == FarFieldSizing::anisotropic) {
     FarFieldInput local_input{points, hull, {}, {}, {}};
     for (std::size_t entry = 0; entry < input.metric_nodes.size(); ++entry) {
@@ -201,23 +201,23 @@ FarFieldResult farfield(const FarFieldInput& input, const FarFieldOptions& optio
       local_input.metric_nodes.push_back(found->second);
       local_input.metrics.push_back(input.metrics[entry]);
     }
-    layers = farfield_parts::layer_points(local_input, footprint, symmetric, hull_size, options);
+    layers = farfield_detail::layer_points(local_input, footprint, symmetric, hull_size, options);
     result.layer_points = layers.volume.size() + layers.plane.size();
     log.info("farfield: " + std::to_string(result.layer_points) + " layer points");
   }
 
   const std::size_t hull_point_count = points.size();
-  const farfield_parts::OuterBoundary outer =
-      farfield_parts::outer_boundary(options.shape, centre, radius, farfield_size, symmetric, points);
+  const farfield_detail::OuterBoundary outer =
+      farfield_detail::outer_boundary(options.shape, centre, radius, farfield_size, symmetric, points);
   std::vector<Triangle> plane;
   if (symmetric)
-    plane = farfield_parts::symmetry_plane(options.symmetry_y, outer.rim, footprint, layers.plane, size,
-                                           options.plane_minimum_angle, points);
+    plane = farfield_detail::symmetry_plane(options.symmetry_y, outer.rim, footprint, layers.plane, size,
+                                            options.plane_minimum_angle, points);
   result.boundary_points = points.size() - hull_point_count;
   log.detail("farfield: " + std::to_string(hull.size()) + " hull, " + std::to_string(plane.size()) +
              " symmetry, " + std::to_string(outer.triangles.size()) + " far-field triangles");
 
-  farfield_parts::TetgenInput tetgen;
+  farfield_detail::TetgenInput tetgen;
   tetgen.radius_edge_ratio = options.radius_edge_ratio;
   tetgen.points = points;
   for (std::size_t node = 0; node < points.size(); ++node)
@@ -261,12 +261,12 @@ FarFieldResult farfield(const FarFieldInput& input, const FarFieldOptions& optio
 
   // Pass 1: the quality run (-q, -m), in the preconditioned space when asked.
   Stopwatch watch;
-  farfield_parts::TetgenOutput tetrahedra;
+  farfield_detail::TetgenOutput tetrahedra;
   tetgen.time_limit_seconds =
       options.precondition ? options.precondition_time_limit : options.tetgen_time_limit;
   if (options.precondition) {
     try {
-      tetrahedra = farfield_parts::run_tetgen(tetgen);
+      tetrahedra = farfield_detail::run_tetgen(tetgen);
     } catch (const Error& error) {
       log.warning(std::string(error.what()) + " in the preconditioned space; running it without the map");
       forward = backward = Eigen::Matrix3d::Identity();
@@ -274,10 +274,10 @@ FarFieldResult farfield(const FarFieldInput& input, const FarFieldOptions& optio
       tetgen.holes = holes;
       tetgen.time_limit_seconds = options.tetgen_time_limit;
       watch = Stopwatch();
-      tetrahedra = farfield_parts::run_tetgen(tetgen);
+      tetrahedra = farfield_detail::run_tetgen(tetgen);
     }
   } else {
-    tetrahedra = farfield_parts::run_tetgen(tetgen);
+    tetrahedra = farfield_detail::run_tetgen(tetgen);
   }
   log.info("farfield: quality pass " + seconds_text(watch.seconds()) + ", " +
            std::to_string(tetrahedra.tetrahedra.size()) + " tetrahedra");
@@ -308,14 +308,15 @@ FarFieldResult farfield(const FarFieldInput& input, const FarFieldOptions& optio
     near_layers.insert(near_layers.end(), layers.volume.begin(), layers.volume.end());
     near_layers.insert(near_layers.end(), layers.plane.begin(), layers.plane.end());
     volume_points = layers.volume;
-    const std::vector<Vector3> kept = farfield_parts::points_beyond(isotropic_points, near_layers, size, 0.7);
+    const std::vector<Vector3> kept =
+        farfield_detail::points_beyond(isotropic_points, near_layers, size, 0.7);
     volume_points.insert(volume_points.end(), kept.begin(), kept.end());
     second_pass = true;
   } else if (options.precondition) {
     Vector3 where = Vector3::Zero();
-    const std::size_t flat = farfield_parts::flat_tetrahedra(
+    const std::size_t flat = farfield_detail::flat_tetrahedra(
         original, tetrahedra.tetrahedra,
-        farfield_parts::negative_orientation(original, tetrahedra.tetrahedra), &where);
+        farfield_detail::negative_orientation(original, tetrahedra.tetrahedra), &where);
     if (flat > 0) {
       log.info("farfield: " + std::to_string(flat) +
                " tetrahedra flat or inverted after the map back (the first near " + point_text(where) +
@@ -327,18 +328,18 @@ FarFieldResult farfield(const FarFieldInput& input, const FarFieldOptions& optio
                                          original.end());
       const std::vector<Vector3> hull_nodes(points.begin(),
                                             points.begin() + static_cast<std::ptrdiff_t>(hull_point_count));
-      volume_points = farfield_parts::points_beyond(steiner, hull_nodes, size, 0.7);
+      volume_points = farfield_detail::points_beyond(steiner, hull_nodes, size, 0.7);
       second_pass = true;
     }
   }
   if (second_pass) {
     const std::size_t offered = volume_points.size();
-    volume_points = farfield_parts::points_off_hull(volume_points, points, hull, options.hull_clearance);
+    volume_points = farfield_detail::points_off_hull(volume_points, points, hull, options.hull_clearance);
     if (volume_points.size() < offered)
       log.info("farfield: " + std::to_string(offered - volume_points.size()) +
                " volume points left out as too close to a hull triangle");
     watch = Stopwatch();
-    farfield_parts::TetgenInput exact = tetgen;
+    farfield_detail::TetgenInput exact = tetgen;
     exact.points = points;
     exact.points.insert(exact.points.end(), volume_points.begin(), volume_points.end());
     exact.holes = holes;
@@ -349,7 +350,7 @@ FarFieldResult farfield(const FarFieldInput& input, const FarFieldOptions& optio
     // quality pass's tetrahedra are a sound mesh of the same boundary in the original
     // coordinates, so they are kept, isotropic, with a warning.
     try {
-      farfield_parts::TetgenOutput exact_tetrahedra = farfield_parts::run_tetgen(exact);
+      farfield_detail::TetgenOutput exact_tetrahedra = farfield_detail::run_tetgen(exact);
       tetrahedra = std::move(exact_tetrahedra);
       original = tetrahedra.points;  // already in the original coordinates
       for (std::size_t node = 0; node < exact.points.size(); ++node) original[node] = exact.points[node];
@@ -385,7 +386,7 @@ FarFieldResult farfield(const FarFieldInput& input, const FarFieldOptions& optio
   }
   // One orientation for all (TetGen's convention, turned to VTK's): a tetrahedron
   // left with non-positive volume is reported by the validation, not hidden by a swap.
-  const bool turn = farfield_parts::negative_orientation(original, tetrahedra.tetrahedra);
+  const bool turn = farfield_detail::negative_orientation(original, tetrahedra.tetrahedra);
   for (const auto& local : tetrahedra.tetrahedra) {
     Index nodes[4] = {global[static_cast<std::size_t>(local[0])], global[static_cast<std::size_t>(local[1])],
                       global[static_cast<std::size_t>(local[2])], global[static_cast<std::size_t>(local[3])]};
@@ -393,7 +394,7 @@ FarFieldResult farfield(const FarFieldInput& input, const FarFieldOptions& optio
     mesh.add_cell(CellType::tetrahedron, nodes);
   }
   Vector3 where = Vector3::Zero();
-  result.flat_tetrahedra = farfield_parts::flat_tetrahedra(original, tetrahedra.tetrahedra, turn, &where);
+  result.flat_tetrahedra = farfield_detail::flat_tetrahedra(original, tetrahedra.tetrahedra, turn, &where);
   if (result.flat_tetrahedra > 0)
     log.warning("farfield: " + std::to_string(result.flat_tetrahedra) +
                 " tetrahedra have no positive volume, the first near " + point_text(where));

@@ -7,7 +7,7 @@
 
 #include "mixmesh/farfield/farfield.hpp"
 
-namespace mixmesh::farfield_parts {
+namespace mixmesh::farfield_detail {
 
 using Triangle = std::array<Index, 3>;
 
@@ -104,4 +104,4 @@ std::size_t flat_tetrahedra(const std::vector<Vector3>& points,
                             const std::vector<std::array<Index, 4>>& tetrahedra, bool negative,
                             Vector3* first = nullptr);
 
-}  // namespace mixmesh::farfield_parts
+}  // namespace mixmesh::farfield_detail

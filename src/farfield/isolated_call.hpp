@@ -17,7 +17,7 @@
 #include "mixmesh/core/error.hpp"
 #include "mixmesh/mesh/mixed_mesh.hpp"
 
-namespace mixmesh::farfield_parts {
+namespace mixmesh::farfield_detail {
 
 namespace isolated_detail {
 
@@ -138,4 +138,4 @@ Result run_isolated(const std::string& what, Body body, unsigned time_limit_seco
               ")");
 }
 
-}  // namespace mixmesh::farfield_parts
+}  // namespace mixmesh::farfield_detail

@@ -17,7 +17,7 @@
 #include "mixmesh/core/error.hpp"
 #include "mixmesh/mesh/point_cloud.hpp"
 
-namespace mixmesh::farfield_parts {
+namespace mixmesh::farfield_detail {
 
 namespace {
 
@@ -253,4 +253,4 @@ std::vector<Vector3> points_off_hull(const std::vector<Vector3>& candidates,
   return kept;
 }
 
-}  // namespace mixmesh::farfield_parts
+}  // namespace mixmesh::farfield_detail

@@ -11,7 +11,7 @@
 #include "mixmesh/core/error.hpp"
 #include "mixmesh/mesh/cell_geometry.hpp"
 
-namespace mixmesh::farfield_parts {
+namespace mixmesh::farfield_detail {
 
 void use_single_free_termination();  // tetgen_terminate.cpp
 
@@ -244,4 +244,4 @@ TetgenOutput run_tetgen(const TetgenInput& input) {
   }
 }
 
-}  // namespace mixmesh::farfield_parts
+}  // namespace mixmesh::farfield_detail

@@ -12,9 +12,9 @@ void terminatetetgen(tetgenmesh* /*mesh*/, int code) {
   throw code;
 }
 
-namespace mixmesh::farfield_parts {
+namespace mixmesh::farfield_detail {
 
 // Referenced from tetgen_call.cpp, so the linker takes this file from the static library.
 void use_single_free_termination() {}
 
-}  // namespace mixmesh::farfield_parts
+}  // namespace mixmesh::farfield_detail

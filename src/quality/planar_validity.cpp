@@ -8,7 +8,7 @@
 
 #include "validity_parts.hpp"
 
-namespace mixmesh::detail {
+namespace mixmesh::quality_detail {
 
 namespace {
 
@@ -149,4 +149,4 @@ ValidityReport validate_planar(const MixedMesh& mesh, const ValidityOptions& opt
   return report;
 }
 
-}  // namespace mixmesh::detail
+}  // namespace mixmesh::quality_detail

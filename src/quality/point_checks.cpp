@@ -14,7 +14,7 @@
 #include "mixmesh/mesh/cell_geometry.hpp"
 #include "validity_parts.hpp"
 
-namespace mixmesh::detail {
+namespace mixmesh::quality_detail {
 
 Finding make_finding(const std::string& check, const std::string& description, Finding::Severity severity) {
   Finding finding;
@@ -241,4 +241,4 @@ Vector3 face_centre(const MixedMesh& mesh, const CellFace& face) {
   return sum / count;
 }
 
-}  // namespace mixmesh::detail
+}  // namespace mixmesh::quality_detail

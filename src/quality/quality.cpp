@@ -242,7 +242,7 @@ std::vector<double> non_orthogonality(const MixedMesh& mesh, const FaceConnectiv
 
 QualityReport measure_quality(const MixedMesh& mesh, const QualityOptions& options) {
   compute_statistics({}, options.histogram_bins);  // throws for a bad bin count
-  const Finding indices = detail::check_node_indices(mesh, ValidityOptions{});
+  const Finding indices = quality_detail::check_node_indices(mesh, ValidityOptions{});
   if (indices.count > 0)
     throw Error("cannot measure quality: " + std::to_string(indices.count) +
                 " cells or faces have node indices outside the " + std::to_string(mesh.points.size()) +
@@ -256,11 +256,11 @@ QualityReport measure_quality(const MixedMesh& mesh, const QualityOptions& optio
 }
 
 CheckReport check_mesh(const MixedMesh& mesh, const CheckOptions& options) {
-  detail::check_options(options.validity);
+  quality_detail::check_options(options.validity);
   compute_statistics({}, options.quality.histogram_bins);  // throws for a bad bin count
   CheckReport report;
   Stopwatch validity_clock;
-  Finding indices = detail::check_node_indices(mesh, options.validity);
+  Finding indices = quality_detail::check_node_indices(mesh, options.validity);
   if (indices.count > 0) {
     report.validity = validate(mesh, options.validity);
     report.validity_seconds = validity_clock.seconds();
@@ -277,7 +277,7 @@ CheckReport check_mesh(const MixedMesh& mesh, const CheckOptions& options) {
     return report;
   }
   const FaceConnectivity faces = match_faces(mesh);
-  report.validity = detail::validate_volume(mesh, faces, options.validity);
+  report.validity = quality_detail::validate_volume(mesh, faces, options.validity);
   report.validity.findings.insert(report.validity.findings.begin(), std::move(indices));
   report.validity_seconds = validity_clock.seconds();
   Stopwatch quality_clock;

@@ -45,7 +45,7 @@ std::string ValidityReport::summary() const {
   return line.str();
 }
 
-namespace detail {
+namespace quality_detail {
 
 namespace {
 
@@ -196,11 +196,11 @@ ValidityReport validate_volume(const MixedMesh& mesh, const FaceConnectivity& fa
   return report;
 }
 
-}  // namespace detail
+}  // namespace quality_detail
 
 ValidityReport validate(const MixedMesh& mesh, const ValidityOptions& options) {
-  detail::check_options(options);
-  Finding indices = detail::check_node_indices(mesh, options);
+  quality_detail::check_options(options);
+  Finding indices = quality_detail::check_node_indices(mesh, options);
   if (indices.count > 0) {
     ValidityReport report;
     report.points = mesh.points.size();
@@ -209,11 +209,11 @@ ValidityReport validate(const MixedMesh& mesh, const ValidityOptions& options) {
     return report;
   }
   if (mesh.planar()) {
-    ValidityReport report = detail::validate_planar(mesh, options);
+    ValidityReport report = quality_detail::validate_planar(mesh, options);
     report.findings.insert(report.findings.begin(), std::move(indices));
     return report;
   }
-  ValidityReport report = detail::validate_volume(mesh, match_faces(mesh), options);
+  ValidityReport report = quality_detail::validate_volume(mesh, match_faces(mesh), options);
   report.findings.insert(report.findings.begin(), std::move(indices));
   return report;
 }

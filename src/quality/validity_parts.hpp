@@ -8,7 +8,7 @@
 #include "mixmesh/mesh/face_connectivity.hpp"
 #include "mixmesh/quality/validity.hpp"
 
-namespace mixmesh::detail {
+namespace mixmesh::quality_detail {
 
 Finding make_finding(const std::string& check, const std::string& description,
                      Finding::Severity severity = Finding::Severity::error);
@@ -37,4 +37,4 @@ ValidityReport validate_planar(const MixedMesh& mesh, const ValidityOptions& opt
 // Centre of a cell face, for locating offenders.
 Vector3 face_centre(const MixedMesh& mesh, const CellFace& face);
 
-}  // namespace mixmesh::detail
+}  // namespace mixmesh::quality_detail
