@@ -50,8 +50,16 @@ void stack_faces(int layers, std::vector<std::array<int, 4>>& quads,
                {stack_point(0, 0), stack_point(1, 0), stack_point(1, 3)}};
 }
 
+// A piece's node numbers as cell_shape takes them, without a heap allocation: the search
+// below weighs every piece hundreds of times.
+std::array<Index, 5> piece_nodes(const JunctionCell& cell) {
+  std::array<Index, 5> nodes{};
+  std::copy(cell.nodes.begin(), cell.nodes.end(), nodes.begin());
+  return nodes;
+}
+
 double piece_quality(const JunctionCell& cell, const std::vector<Vector3>& points) {
-  std::vector<Index> indices(cell.nodes.begin(), cell.nodes.end());
+  const std::array<Index, 5> indices = piece_nodes(cell);
   const CellShape shape = cell_shape(cell.type, points, indices.data());
   if (!shape.valid()) return -1.0;
   if (cell.type != CellType::tetrahedron) return shape.min_corner_jacobian;
@@ -96,10 +104,15 @@ JunctionCells junction_cells(const JunctionLevels& levels) {
     const Vector3 corner = 0.5 * (at[0] + at[3]);
     points[centre] = corner + u * (at[1] - corner) + v * (at[2] - corner);
   };
-  auto worst = [&](double u, double v, double w) {
+  // The worst piece, or any value at most `bound` once a piece falls to it (the search
+  // only asks whether a point beats the best so far).
+  auto worst = [&](double u, double v, double w, double bound) {
     place(u, v, w);
     double quality = 1.0;
-    for (const JunctionCell& cell : result.cells) quality = std::min(quality, piece_quality(cell, points));
+    for (const JunctionCell& cell : result.cells) {
+      quality = std::min(quality, piece_quality(cell, points));
+      if (quality <= bound) break;
+    }
     return quality;
   };
   std::array<double, 3> best{1.0 / 3.0, 1.0 / 3.0, 0.5};
@@ -107,7 +120,7 @@ JunctionCells junction_cells(const JunctionLevels& levels) {
   for (double u : {1e-4, 3e-4, 1e-3, 3e-3, 1e-2, 3e-2, 0.1, 0.2, 1.0 / 3.0})
     for (double v : {1e-4, 3e-4, 1e-3, 3e-3, 1e-2, 3e-2, 0.1, 0.2, 1.0 / 3.0})
       for (double w : {0.2, 0.35, 0.5, 0.65, 0.8}) {
-        const double quality = worst(u, v, w);
+        const double quality = worst(u, v, w, best_quality);
         if (quality > best_quality) {
           best_quality = quality;
           best = {u, v, w};
@@ -124,7 +137,7 @@ JunctionCells junction_cells(const JunctionLevels& levels) {
           const auto a = static_cast<std::size_t>(axis);
           trial[a] = axis < 2 ? trial[a] * (1.0 + sign * step) : trial[a] + sign * 0.25 * step;
           if (trial[0] + trial[1] >= 1.0 || trial[2] <= 0.0 || trial[2] >= 1.0) continue;
-          const double quality = worst(trial[0], trial[1], trial[2]);
+          const double quality = worst(trial[0], trial[1], trial[2], best_quality);
           if (quality > best_quality) {
             best_quality = quality;
             best = trial;
@@ -152,7 +165,7 @@ JunctionCells junction_cells(const Front& front, const Junction& junction, const
 
 bool junction_valid(const JunctionCells& cells) {
   return std::all_of(cells.cells.begin(), cells.cells.end(), [&](const JunctionCell& cell) {
-    std::vector<Index> indices(cell.nodes.begin(), cell.nodes.end());
+    const std::array<Index, 5> indices = piece_nodes(cell);
     return cell_shape(cell.type, cells.points, indices.data()).valid();
   });
 }
