@@ -198,7 +198,6 @@ BoundaryMotion boundary_motion(const MixedMesh& mesh, const MixedMesh& reference
   boundary.body.assign(points, -1);
   boundary.marker_roles.assign(mesh.marker_names.size(), MarkerRole::fixed);
   const BoundaryElements elements = boundary_elements(mesh);
-  std::vector<char> by_direction_fitted;
   const bool planar = mesh.planar();
 
   // Symmetry markers: nodes slide in the plane; a node on two planes is held fixed.
@@ -301,12 +300,8 @@ BoundaryMotion boundary_motion(const MixedMesh& mesh, const MixedMesh& reference
       boundary.rotation[node] = rigid ? rotation_vector : Vector3::Zero();
     }
     if (rigid) continue;
-    // Mode and surface motions: the rotation of each node's boundary star, fitted.
-    // Nodes no such fit reaches (rigid bodies, fixed markers) take `rotation` below.
-    if (boundary.rotation_by_direction.empty()) {
-      boundary.rotation_by_direction.assign(points, Vector3::Zero());
-      by_direction_fitted.assign(points, 0);
-    }
+    // Mode and surface motions: the rotation of each node's boundary star, fitted by
+    // direction (rotation.cpp says why).
     std::vector<std::vector<Index>> neighbours(points);
     for (std::size_t element = 0; element < elements.nodes.size(); ++element) {
       const auto& nodes = elements.nodes[element];
@@ -328,13 +323,9 @@ BoundaryMotion boundary_motion(const MixedMesh& mesh, const MixedMesh& reference
         before.push_back(mesh.points[at] - mesh.points[node]);
         after.push_back(target[at] - target[node]);
       }
-      boundary.rotation[node] = detail::fit_rotation(before, after, planar);
-      boundary.rotation_by_direction[node] = detail::fit_rotation(before, after, planar, true);
-      by_direction_fitted[node] = 1;
+      boundary.rotation[node] = detail::fit_rotation(before, after, planar, true);
     }
   }
-  for (std::size_t node = 0; node < by_direction_fitted.size(); ++node)
-    if (!by_direction_fitted[node]) boundary.rotation_by_direction[node] = boundary.rotation[node];
   return boundary;
 }
 

@@ -88,6 +88,7 @@ DeformResult step_from(const MixedMesh& mesh, const MixedMesh& reference, const 
   detail::project_sliding(boundary, mesh.points, points);
   detail::transport_layer_lines(measured->layers, boundary, mesh.points, points);
   detail::project_sliding(boundary, mesh.points, points);
+  detail::keep_off_sliding_planes(boundary, mesh.points, points);
   const detail::UntangleReport untangled = detail::untangle(measured->dual, boundary, mesh.points, points);
   if (untangled.inverted_before > 0)
     log.detail("untangle: " + std::to_string(untangled.inverted_before) +

@@ -358,7 +358,7 @@ void transport_layer_lines(const LayerLines& lines, const BoundaryMotion& bounda
       before.push_back(original[other] - original[node]);
       after.push_back(moved[other] - moved[node]);
     }
-    turn[node] = rotation_matrix(fit_rotation(before, after, false));
+    turn[node] = rotation_matrix(fit_rotation(before, after, false, true));
   });
   const std::vector<Vector3> method = moved;
   parallel_items(point_count, [&](std::size_t node) {

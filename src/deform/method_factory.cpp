@@ -52,10 +52,7 @@ class IdwMethod : public DeformationMethod {
       IdwBody& target = input.bodies[static_cast<std::size_t>(body)];
       target.positions.push_back(mesh.points[node]);
       target.displacements.push_back(boundary.displacement[node]);
-      // The fit by direction where the motion has one (mode and surface motions): the
-      // rotation form carries it over the distance to the body (boundary_motion.cpp).
-      const Vector3& turn =
-          boundary.rotation_by_direction.empty() ? boundary.rotation[node] : boundary.rotation_by_direction[node];
+      const Vector3& turn = boundary.rotation[node];
       target.rotations.push_back(
           Eigen::AngleAxisd(turn.norm(), turn.norm() > 0.0 ? Vector3(turn.normalized()) : Vector3::UnitZ())
               .toRotationMatrix());

@@ -33,4 +33,11 @@ void project_sliding(const BoundaryMotion& boundary, const std::vector<Vector3>&
 void project_sliding(const BoundaryMotion& boundary, const std::vector<Vector3>& original, std::size_t node,
                      Vector3& position);
 
+// Keeps interior nodes of `moved` on their side of every symmetry plane: a step of
+// length d towards a plane from distance s becomes one to s·exp(−d/s), the same to first
+// order in d/s and never through the plane (rotation.cpp says why). Nodes on a plane and
+// prescribed nodes are left as they are.
+void keep_off_sliding_planes(const BoundaryMotion& boundary, const std::vector<Vector3>& original,
+                             std::vector<Vector3>& moved);
+
 }  // namespace mixmesh::deform::detail

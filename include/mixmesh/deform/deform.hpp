@@ -45,16 +45,11 @@ struct BoundaryMotion {
   // Prescribed nodes: the displacement from the input mesh; zero elsewhere.
   std::vector<Vector3> displacement;
   // Prescribed nodes: the rotation vector (axis × angle, radians) of the surface
-  // around the node from the input mesh to the target (exact for rigid bodies, a
-  // least-squares fit of the node's boundary neighbours for mode and surface
-  // motions); zero for fixed nodes and elsewhere.
+  // around the node from the input mesh to the target (exact for rigid bodies; for mode
+  // and surface motions a least-squares fit of the node's boundary neighbours, each
+  // weighted by its direction, 1/r², detail::fit_rotation); zero for fixed nodes and
+  // elsewhere. ARA's faces and IDW's rotation form carry it over lever arms of metres.
   std::vector<Vector3> rotation;
-  // Mode and surface motions: the same fit with each neighbour weighted by its direction
-  // (1/r², detail::fit_rotation), for IDW, which carries a node's rotation over a lever
-  // arm of metres; empty for rigid motions (`rotation` is exact there). ARA keeps
-  // `rotation`: its faces average their nodes' rotations, and on the ONERA M6 bending
-  // mode the weighted fit left one far-field tetrahedron by the root plane folded.
-  std::vector<Vector3> rotation_by_direction;
   // Sliding nodes: unit normal of their symmetry plane; zero elsewhere.
   std::vector<Vector3> slide_normal;
   // Prescribed nodes of a moving body: its index in Motion::bodies; -1 elsewhere.
