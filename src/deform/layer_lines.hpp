@@ -9,9 +9,12 @@
 // boundary nodes, a set that changes from node to node). Two nodes a layer apart then
 // differ in their motion by more than the layer is thick, and the cell folds. Moving the
 // nodes of a line rigidly with the surface at its base removes the shear across the
-// layers; the line's outermost node keeps the method's position, so the cells outside the
-// layers see what the method gave, and the difference is spread along the line by arc
-// length.
+// layers. A wall's line moves rigidly to its top, and the difference between the method
+// and that motion at the top is carried to the nodes outside the layers, fading one wall
+// face size above and beside them (layer_lines.cpp, carry_top_offsets): the method is
+// wrong on the scale of the wall's faces, which the cells there match. A sheet's line
+// keeps the method's position at its top (its base moves by the method too), and the
+// difference is spread along the line by arc length.
 //
 // A stack is a column of hexahedra (entered through a quad) and prisms (through a
 // triangle), each cell left through the face opposite the one it was entered by. Columns
@@ -53,9 +56,10 @@ LayerLines find_layer_lines(const DualMesh& dual, const std::vector<MarkerRole>&
                             const std::vector<Vector3>& points);
 
 // Moves every line node of `moved` (positions after the method, boundary nodes already
-// where the motion puts them) with its base: x′ = b′ + R (x − b) + s (t′ − (b′ + R (t − b))),
-// R the rotation fitted to the base's star, t the line's top, s = height / height of t.
-// Prescribed nodes are left alone.
+// where the motion puts them) with its base: x′ = b′ + R (x − b) on a wall's line, with
+// the method's offset at the top carried to the nodes outside the layers; on a sheet's
+// line x′ = b′ + R (x − b) + s (t′ − (b′ + R (t − b))), t the line's top, s = height /
+// height of t. R is the rotation fitted to the base's star. Prescribed nodes are left alone.
 void transport_layer_lines(const LayerLines& lines, const BoundaryMotion& boundary,
                            const std::vector<Vector3>& original, std::vector<Vector3>& moved);
 
