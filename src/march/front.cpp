@@ -300,15 +300,26 @@ void add_wrap_faces(const SurfaceMesh& surface, const std::vector<char>& attache
   }
 }
 
-}  // namespace
-
-Front build_front(const SurfaceMesh& surface) {
-  Front front;
-  const std::vector<SurfaceFace> faces = surface_faces(surface, front.patch_names);
-  const std::size_t point_count = surface.points.size();
-
+// Which side of a sheet the wall faces at its nodes join.
+struct SheetSides {
   // Sheet normal at every wake node: decides which side a wall face touching it takes.
-  std::vector<Vector3> wake_normal(point_count, Vector3::Zero());
+  std::vector<Vector3> wake_normal;
+  std::vector<std::array<int, 4>> corner_side;
+  std::unordered_map<Index, std::vector<std::pair<std::size_t, int>>> across;  // node -> (face, corner)
+  std::unordered_map<Index, std::vector<std::size_t>> wall_at_wake;
+};
+
+// The junctions planned at the nodes where wall faces lie across a sheet.
+struct JunctionPlans {
+  std::vector<int> split_corner;
+  std::vector<std::pair<std::size_t, Index>> junction_nodes;  // (split face, sheet free-edge node)
+};
+
+SheetSides sheet_sides(const SurfaceMesh& surface, const std::vector<SurfaceFace>& faces) {
+  const std::size_t point_count = surface.points.size();
+  SheetSides sides;
+  std::vector<Vector3>& wake_normal = sides.wake_normal;
+  wake_normal.assign(point_count, Vector3::Zero());
   std::vector<char> on_wake(point_count, 0);
   for (const SurfaceFace& face : faces)
     if (face.wake) {
@@ -325,9 +336,7 @@ Front build_front(const SurfaceMesh& surface) {
   // the other way the line below; faces within 45 degrees of the sheet's plane are
   // across it (a tip cap).
   const double across_sheet = std::sqrt(0.5);
-  std::vector<std::array<int, 4>> corner_side(faces.size(), {0, 0, 0, 0});
-  std::unordered_map<Index, std::vector<std::pair<std::size_t, int>>> across;  // node -> (face, corner)
-  std::unordered_map<Index, std::vector<std::size_t>> wall_at_wake;
+  sides.corner_side.assign(faces.size(), {0, 0, 0, 0});
   for (std::size_t f = 0; f < faces.size(); ++f) {
     const SurfaceFace& face = faces[f];
     if (face.wake) continue;
@@ -337,41 +346,52 @@ Front build_front(const SurfaceMesh& surface) {
       if (!on_wake[static_cast<std::size_t>(node)]) continue;
       const double facing = face_normal.dot(wake_normal[static_cast<std::size_t>(node)].normalized());
       const int side = facing > across_sheet ? +1 : facing < -across_sheet ? -1 : 0;
-      corner_side[f][static_cast<std::size_t>(k)] = side;
-      wall_at_wake[node].push_back(f);
-      if (side == 0) across[node].push_back({f, k});
+      sides.corner_side[f][static_cast<std::size_t>(k)] = side;
+      sides.wall_at_wake[node].push_back(f);
+      if (side == 0) sides.across[node].push_back({f, k});
     }
   }
-  // Nodes on a free edge of a sheet: a sheet edge of one sheet face that no wall face
-  // uses and that does not lie in the symmetry plane (the plane closes a sheet's root
-  // edge: the wall faces across the sheet there, a blunt base's, join the lines on
-  // either side like the others; as a free edge they got a line of their own, and the
-  // layers did not close round it on the plane).
-  std::vector<char> on_sheet_free_edge(point_count, 0);
+  return sides;
+}
+
+// Nodes on a free edge of a sheet: a sheet edge of one sheet face that no wall face
+// uses and that does not lie in the symmetry plane (the plane closes a sheet's root
+// edge: the wall faces across the sheet there, a blunt base's, join the lines on
+// either side like the others; as a free edge they got a line of their own, and the
+// layers did not close round it on the plane).
+std::vector<char> sheet_free_edge_nodes(const SurfaceMesh& surface, const std::vector<SurfaceFace>& faces) {
+  std::vector<char> on_sheet_free_edge(surface.points.size(), 0);
   auto on_plane = [&](Index node) {
     return surface.symmetry_tolerance >= 0.0 && std::abs(surface.points[static_cast<std::size_t>(node)].y() -
                                                          surface.symmetry_y) <= surface.symmetry_tolerance;
   };
-  {
-    std::unordered_map<std::uint64_t, int> sheet_uses;
-    auto edge_key = [](Index a, Index b) {
-      return static_cast<std::uint64_t>(std::min(a, b)) << 32 | static_cast<std::uint64_t>(std::max(a, b));
-    };
-    for (const SurfaceFace& face : faces)
-      for (int k = 0; k < face.corner_count; ++k) {
-        const std::uint64_t key = edge_key(face.nodes[static_cast<std::size_t>(k)],
-                                           face.nodes[static_cast<std::size_t>((k + 1) % face.corner_count)]);
-        sheet_uses[key] += face.wake ? 1 : 1000;
-      }
-    for (const auto& [key, uses] : sheet_uses)
-      if (uses == 1 &&
-          !(on_plane(static_cast<Index>(key >> 32)) && on_plane(static_cast<Index>(key & 0xffffffffu)))) {
-        on_sheet_free_edge[static_cast<std::size_t>(key >> 32)] = 1;
-        on_sheet_free_edge[static_cast<std::size_t>(key & 0xffffffffu)] = 1;
-      }
-  }
-  std::vector<int> split_corner(faces.size(), -1);
-  std::vector<std::pair<std::size_t, Index>> junction_nodes;  // (split face, sheet free-edge node)
+  std::unordered_map<std::uint64_t, int> sheet_uses;
+  auto edge_key = [](Index a, Index b) {
+    return static_cast<std::uint64_t>(std::min(a, b)) << 32 | static_cast<std::uint64_t>(std::max(a, b));
+  };
+  for (const SurfaceFace& face : faces)
+    for (int k = 0; k < face.corner_count; ++k) {
+      const std::uint64_t key = edge_key(face.nodes[static_cast<std::size_t>(k)],
+                                         face.nodes[static_cast<std::size_t>((k + 1) % face.corner_count)]);
+      sheet_uses[key] += face.wake ? 1 : 1000;
+    }
+  for (const auto& [key, uses] : sheet_uses)
+    if (uses == 1 &&
+        !(on_plane(static_cast<Index>(key >> 32)) && on_plane(static_cast<Index>(key & 0xffffffffu)))) {
+      on_sheet_free_edge[static_cast<std::size_t>(key >> 32)] = 1;
+      on_sheet_free_edge[static_cast<std::size_t>(key & 0xffffffffu)] = 1;
+    }
+  return on_sheet_free_edge;
+}
+
+// Gives the wall faces across a sheet their sides (in sides.corner_side) and plans the
+// junctions where such a fan meets the sheet's free edge.
+JunctionPlans plan_junctions(const SurfaceMesh& surface, const std::vector<SurfaceFace>& faces,
+                             const std::vector<char>& on_sheet_free_edge, SheetSides& sides) {
+  const std::vector<Vector3>& wake_normal = sides.wake_normal;
+  std::vector<std::array<int, 4>>& corner_side = sides.corner_side;
+  JunctionPlans plans;
+  plans.split_corner.assign(faces.size(), -1);
   // Edges of the sheet's faces: a wall face across the sheet that shares one at a node
   // stands on the sheet's attachment (a blunt base, the wake leaving from its middle).
   std::set<std::pair<Index, Index>> sheet_edges;
@@ -411,7 +431,7 @@ Front build_front(const SurfaceMesh& surface) {
     const double above = offset.dot(wake_normal[static_cast<std::size_t>(node)]);
     corner_side[f][static_cast<std::size_t>(k)] = above >= 0.0 ? +1 : -1;
   };
-  for (auto& [node, fan] : across) {
+  for (auto& [node, fan] : sides.across) {
     // Faces on the attachment (a blunt base's) join by their centre at every node, also
     // where the sheet's free edge starts (the base's end at a tip): the rest of the fan
     // there (the tip cap's triangles) then lies between faces of either side and is
@@ -426,18 +446,26 @@ Front build_front(const SurfaceMesh& surface) {
         rest.push_back({f, k});
     }
     if (rest.empty()) continue;
-    const JunctionPlan plan = plan_junction(surface, faces, node, rest, wall_at_wake[node], corner_side,
+    const JunctionPlan plan = plan_junction(surface, faces, node, rest, sides.wall_at_wake[node], corner_side,
                                             wake_normal[static_cast<std::size_t>(node)].normalized());
     if (plan.face >= 0) {
-      split_corner[static_cast<std::size_t>(plan.face)] = plan.corner;
-      junction_nodes.push_back({static_cast<std::size_t>(plan.face), plan.sheet_node});
+      plans.split_corner[static_cast<std::size_t>(plan.face)] = plan.corner;
+      plans.junction_nodes.push_back({static_cast<std::size_t>(plan.face), plan.sheet_node});
     } else if (!on_sheet_free_edge[static_cast<std::size_t>(node)]) {
       for (const auto& [f, k] : rest) join_by_centre(node, f, k);
     }
   }
-  std::sort(junction_nodes.begin(), junction_nodes.end());
+  std::sort(plans.junction_nodes.begin(), plans.junction_nodes.end());
+  return plans;
+}
 
-  std::vector<std::array<int, 3>> node_columns(point_count, {-1, -1, -1});
+// The front faces: each wall face once (a split face as a quad on both sheet lines),
+// each wake face twice, once per side. Returns each node's columns by side + 1.
+std::vector<std::array<int, 3>> add_front_faces(const SurfaceMesh& surface,
+                                                const std::vector<SurfaceFace>& faces,
+                                                const std::vector<std::array<int, 4>>& corner_side,
+                                                const std::vector<int>& split_corner, Front& front) {
+  std::vector<std::array<int, 3>> node_columns(surface.points.size(), {-1, -1, -1});
   auto column = [&](Index node, int side) {
     int& slot = node_columns[static_cast<std::size_t>(node)][static_cast<std::size_t>(side + 1)];
     if (slot < 0) {
@@ -488,6 +516,12 @@ Front build_front(const SurfaceMesh& surface) {
     }
     front.faces.push_back(front_face);
   }
+  return node_columns;
+}
+
+void add_junctions(const std::vector<SurfaceFace>& faces,
+                   const std::vector<std::pair<std::size_t, Index>>& junction_nodes,
+                   const std::vector<std::array<int, 3>>& node_columns, Front& front) {
   // The front faces are the surface's wall faces in order, each wake face twice.
   std::vector<int> front_face_of(faces.size(), -1);
   for (std::size_t f = 0, next = 0; f < faces.size(); ++f) {
@@ -506,19 +540,19 @@ Front build_front(const SurfaceMesh& surface) {
     }
     front.junctions.push_back(junction);
   }
-  // Where a sheet leaves the wall (trailing-edge nodes): wake nodes of a wall face.
-  std::vector<char> attached(point_count, 0);
-  for (const auto& [node, wall_faces] : wall_at_wake) attached[static_cast<std::size_t>(node)] = 1;
-  add_wrap_faces(surface, attached, node_columns, front);
+}
 
+void add_column_faces(Front& front) {
   const std::size_t column_count = front.column_node.size();
   front.column_faces.assign(column_count, {});
   for (std::size_t f = 0; f < front.faces.size(); ++f)
     for (int k = 0; k < front.faces[f].corner_count; ++k)
       front.column_faces[static_cast<std::size_t>(front.faces[f].columns[static_cast<std::size_t>(k)])]
           .push_back(static_cast<int>(f));
+}
 
-  // Edges: free (one face), shared (two faces, opposite directions), else an error.
+// Edges: free (one face), shared (two faces, opposite directions), else an error.
+void add_edges(Front& front) {
   std::unordered_map<std::uint64_t, std::vector<std::pair<int, int>>> edges;
   for (std::size_t f = 0; f < front.faces.size(); ++f) {
     const FrontFace& face = front.faces[f];
@@ -557,8 +591,11 @@ Front build_front(const SurfaceMesh& surface) {
             [](const SharedEdge& a, const SharedEdge& b) {
               return a.faces != b.faces ? a.faces < b.faces : a.corners < b.corners;
             });
+}
 
-  // Neighbourhoods: rings, closed by mirroring in the symmetry plane where needed.
+// Neighbourhoods: rings, closed by mirroring in the symmetry plane where needed.
+void add_rings(Front& front) {
+  const std::size_t column_count = front.column_node.size();
   front.neighbourhood.assign(column_count, Neighbourhood::free);
   front.ring.assign(column_count, {});
   front.stencil.assign(column_count, {-1, -1, -1, -1, -1, -1, -1, -1});
@@ -579,10 +616,12 @@ Front build_front(const SurfaceMesh& surface) {
     front.ring[c] = ring;
     front.neighbourhood[c] = Neighbourhood::ring;
   }
+}
 
-  // The two lines of a split corner or a wrap face's node are free columns (their
-  // directions are averaged with their fans') and do not average with each other: one
-  // serves the faces above the sheet, the other those below.
+// The two lines of a split corner or a wrap face's node are free columns (their
+// directions are averaged with their fans') and do not average with each other: one
+// serves the faces above the sheet, the other those below.
+void free_split_and_wrap_lines(Front& front) {
   for (const FrontFace& face : front.faces) {
     if (!face.split && !face.wrap) continue;
     for (const auto& [one, other] : face.wrap ? std::vector<std::pair<int, int>>{{0, 3}, {1, 2}}
@@ -595,8 +634,10 @@ Front build_front(const SurfaceMesh& surface) {
         front.neighbourhood[column] = Neighbourhood::free;
       }
   }
+}
 
-  // Structured stencils for the interior nodes of structured patches.
+// Structured stencils for the interior nodes of structured patches.
+void add_structured_stencils(const SurfaceMesh& surface, Front& front) {
   std::size_t face_base = 0;
   for (const StructuredPatch& patch : surface.structured) {
     const int sides = patch.role == PatchRole::wake ? 2 : 1;
@@ -625,6 +666,29 @@ Front build_front(const SurfaceMesh& surface) {
     }
     face_base += quads * static_cast<std::size_t>(sides);
   }
+}
+
+}  // namespace
+
+Front build_front(const SurfaceMesh& surface) {
+  Front front;
+  const std::vector<SurfaceFace> faces = surface_faces(surface, front.patch_names);
+  const std::size_t point_count = surface.points.size();
+  SheetSides sides = sheet_sides(surface, faces);
+  const std::vector<char> on_sheet_free_edge = sheet_free_edge_nodes(surface, faces);
+  const JunctionPlans plans = plan_junctions(surface, faces, on_sheet_free_edge, sides);
+  const std::vector<std::array<int, 3>> node_columns =
+      add_front_faces(surface, faces, sides.corner_side, plans.split_corner, front);
+  add_junctions(faces, plans.junction_nodes, node_columns, front);
+  // Where a sheet leaves the wall (trailing-edge nodes): wake nodes of a wall face.
+  std::vector<char> attached(point_count, 0);
+  for (const auto& [node, wall_faces] : sides.wall_at_wake) attached[static_cast<std::size_t>(node)] = 1;
+  add_wrap_faces(surface, attached, node_columns, front);
+  add_column_faces(front);
+  add_edges(front);
+  add_rings(front);
+  free_split_and_wrap_lines(front);
+  add_structured_stencils(surface, front);
   return front;
 }
 
