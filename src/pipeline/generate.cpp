@@ -99,6 +99,244 @@ std::string layer_hint(const MarchReport& march) {
          "layers clear of each other";
 }
 
+// What the march, interface, metric and far-field stages hand on from attempt to
+// attempt, and what a retry changes.
+struct HullAttempts {
+  MarchOptions march_options;
+  BoundaryLayer layers;
+  InterfaceResult interface;
+  FarFieldInput farfield_input;
+  std::optional<FarFieldResult> farfield_result;
+  std::vector<Vector3> previous_crossings;
+};
+
+// Lowers the layers round `crossings` for the next attempt, and says why (`reason`).
+// The hull intersects itself where the layers came too close to each other (a
+// strongly tapered tip's trailing edge, a stop the blending could not smooth), and an
+// outer cell is twisted more than it is thick beside an early stop: the columns round
+// the place stop lower and slope down to it, and the stages run again. Each retry
+// reaches further and lower.
+void lower_layers(const SurfaceMesh& surface, const GenerateOptions& options, const Log& log, int attempt,
+                  const std::vector<Vector3>& crossings, const std::string& reason, HullAttempts& attempts) {
+  // Every crossing TetGen found gets a stop (one for all the crossings within half a
+  // stop's reach of it): a blunt base crosses the sheet's first lines all along the
+  // wing, and a stop at the first crossing alone left the others.
+  // Reach: three layer thicknesses and the surface cells there (twice the distance
+  // to the nearest surface node; thin layers alone reached no face on a small wing),
+  // growing with each retry; depth: half the layers, then half as many again each
+  // time (behind a blunt base the crossings lie low in the layers, and four layers
+  // less per retry never reached them).
+  MarchOptions& march_options = attempts.march_options;
+  std::vector<ForcedStop> stops;
+  for (const Vector3& crossing : crossings) {
+    const bool covered = std::any_of(stops.begin(), stops.end(), [&](const ForcedStop& other) {
+      return (other.centre - crossing).norm() < 0.5 * other.radius;
+    });
+    if (covered) continue;
+    double nearest_node = std::numeric_limits<double>::infinity();
+    for (const Vector3& point : surface.points)
+      nearest_node = std::min(nearest_node, (point - crossing).norm());
+    ForcedStop stop;
+    stop.centre = crossing;
+    stop.radius = (attempt + 1) * (3.0 * attempts.layers.report.total_thickness + 2.0 * nearest_node);
+    stop.layer = std::max(1, march_options.spacing.layer_count >> (attempt + 1));
+    stops.push_back(stop);
+  }
+  march_options.forced_stops.insert(march_options.forced_stops.end(), stops.begin(), stops.end());
+  log.warning(reason + "; the layers within " + std::to_string(stops.front().radius) + " m of " +
+              std::to_string(stops.size()) + (stops.size() == 1 ? " place" : " places") + " stop by layer " +
+              std::to_string(stops.front().layer) + " (retry " + std::to_string(attempt + 1) + " of " +
+              std::to_string(options.hull_retries) + ")");
+  attempts.previous_crossings = crossings;
+}
+
+BoundaryLayer march_stage(const SurfaceMesh& surface, const MarchOptions& march_options,
+                          GenerateReport& report, const Log& log) {
+  BoundaryLayer layers =
+      run_stage("march", report, [&] { return march_layers(surface, march_options, nullptr); });
+  report.march = layers.report;
+  log.info("march: " + seconds_text(report.stages.back().seconds) + ", " +
+           std::to_string(layers.report.layers_completed) + "/" +
+           std::to_string(layers.report.layers_requested) + " layers, " +
+           std::to_string(layers.mesh.cell_count(CellType::hexahedron)) + " hexahedra, " +
+           std::to_string(layers.mesh.cell_count(CellType::prism)) + " prisms, first spacing " +
+           std::to_string(layers.report.first_spacing) + " m, thickness " +
+           std::to_string(layers.report.total_thickness) + " m");
+  if (layers.report.stopped_faces > 0) {
+    const StoppedRegion& lowest = layers.report.stopped.front();  // sorted by layer
+    log.warning("march: growth stopped early on " + std::to_string(layers.report.stopped_faces) + " faces (" +
+                std::to_string(layers.report.stopped_nodes) + " nodes, " +
+                std::to_string(layers.report.blended_faces) +
+                " of them to slope down to the others); the lowest " + std::to_string(lowest.faces) +
+                " at layer " + std::to_string(lowest.layer) + " near " + point_text(lowest.location) + ", " +
+                std::to_string(lowest.thickness_lost) + " m of the wall stack lost");
+  }
+  return layers;
+}
+
+// The interface split; where a cell can be neither split nor capped and a retry is
+// left, its location in `unsplittable` and an empty result.
+InterfaceResult interface_stage(const BoundaryLayer& layers, const GenerateOptions& options, int attempt,
+                                GenerateReport& report, const Log& log,
+                                std::optional<Vector3>& unsplittable) {
+  InterfaceResult interface = run_stage("interface", report, [&] {
+    const OuterLayer outer = pipeline_detail::outer_layer(
+        layers.mesh, {options.march.outer_hull_marker, options.march.hull_side_marker});
+    InterfaceOptions interface_options = options.interface;
+    // The cells the march tagged for capping, under whatever name it tagged them.
+    if (!interface_options.capped_marker.empty())
+      interface_options.capped_marker = options.march.hull_side_marker;
+    try {
+      return split_interface(layers.mesh, outer, interface_options);
+    } catch (const UnsplittableCellError& error) {
+      // An outer cell twisted more than it is thick (next to where the growth stopped
+      // at a tip's trailing edge: random wing 3 of seed 20): lower layers there are
+      // less twisted.
+      if (attempt >= options.hull_retries) throw;
+      log.warning(error.what());
+      unsplittable = error.location;
+      return InterfaceResult();
+    }
+  });
+  if (!unsplittable)
+    log.info("interface: " + seconds_text(report.stages.back().seconds) + ", " +
+             std::to_string(interface.pyramids) + " pyramids, " + std::to_string(interface.tetrahedra) +
+             " tetrahedra, hull of " + std::to_string(interface.hull.size()) + " triangles, " +
+             std::to_string(interface.lowered_caps) + " caps lowered clear of the hull");
+  return interface;
+}
+
+// The metrics of the hull's nodes, for the anisotropic far field.
+void metric_stage(const BoundaryLayer& layers, const InterfaceResult& interface, GenerateReport& report,
+                  const Log& log, FarFieldInput& farfield_input) {
+  run_stage("metric", report, [&] {
+    std::set<Index> hull_nodes;
+    for (const auto& triangle : interface.hull) hull_nodes.insert(triangle.begin(), triangle.end());
+    // Nodes of the layers take the metrics of the layer cells before the split (the
+    // hexahedra's own shape); points the split added (cap apexes) take those of the
+    // cells around them after it.
+    const Index layer_points = static_cast<Index>(layers.mesh.points.size());
+    std::vector<Index> layer_nodes, added_nodes;
+    for (Index node : hull_nodes) (node < layer_points ? layer_nodes : added_nodes).push_back(node);
+    farfield_input.metric_nodes = layer_nodes;
+    farfield_input.metric_nodes.insert(farfield_input.metric_nodes.end(), added_nodes.begin(),
+                                       added_nodes.end());
+    farfield_input.metrics = node_metrics(layers.mesh, layer_nodes);
+    const std::vector<Matrix3> added_metrics = node_metrics(interface.mesh, added_nodes);
+    farfield_input.metrics.insert(farfield_input.metrics.end(), added_metrics.begin(), added_metrics.end());
+    return 0;
+  });
+  log.info("metric: " + seconds_text(report.stages.back().seconds) + ", " +
+           std::to_string(farfield_input.metric_nodes.size()) + " hull node metrics");
+}
+
+// The far field; where a retry is left and the hull intersects itself (or TetGen
+// fails on a hull the retries are mending), the places to lower in `crossings` and
+// no result.
+std::optional<FarFieldResult> farfield_stage(const SurfaceMesh& surface, const GenerateOptions& options,
+                                             const HullAttempts& attempts, int attempt,
+                                             GenerateReport& report, const Log& log,
+                                             std::vector<Vector3>& crossings) {
+  const std::vector<Vector3>& previous_crossings = attempts.previous_crossings;
+  FarFieldOptions farfield_options = options.farfield;
+  farfield_options.symmetry_y = surface.symmetry_y;
+  // Far-field sizes are in chords of the wing, not of the hull, whose extent in x
+  // includes the wake.
+  if (farfield_options.reference_chord <= 0.0 && options.surface.wing)
+    farfield_options.reference_chord = options.surface.wing->stations.front().chord;
+  return run_stage("farfield", report, [&]() -> std::optional<FarFieldResult> {
+    try {
+      return farfield(attempts.farfield_input, farfield_options, log);
+    } catch (const HullIntersectionError& error) {
+      if (attempt < options.hull_retries) {
+        crossings = error.locations;
+        return std::nullopt;
+      }
+      throw Error(error.what() + layer_hint(attempts.layers.report));
+    } catch (const Error& error) {
+      const std::string message = error.what();
+      // TetGen can fail outright on a hull the retries are still mending (a base's
+      // stacks stopped by half the layers: an abort on random wing 22 of seed 11, a
+      // quality pass that never ended on wing 20 of seed 14): the same places are
+      // lowered further, as if it had found the crossings there again.
+      const bool tetgen_failed = message.find("TetGen crashed") != std::string::npos ||
+                                 message.find("did not finish within") != std::string::npos;
+      if (tetgen_failed && !previous_crossings.empty() && attempt < options.hull_retries) {
+        log.warning(message + "; lowering the layers further where the last retry did");
+        crossings = previous_crossings;
+        return std::nullopt;
+      }
+      // A hull the far field cannot fill comes from the layers: say where they stopped
+      // and what to change, not only what TetGen found.
+      if (message.find("intersect") == std::string::npos && message.find("hull edge") == std::string::npos &&
+          message.find("hull is open") == std::string::npos)
+        throw;
+      throw Error(message + layer_hint(attempts.layers.report));
+    }
+  });
+}
+
+// March, interface, metrics and far field; where the hull handed to the far field
+// intersects itself, the layers round the crossing are lowered and the four run again.
+HullAttempts grow_to_farfield(const SurfaceMesh& surface, const GenerateOptions& options,
+                              GenerateReport& report, const Log& log) {
+  HullAttempts attempts;
+  attempts.march_options = options.march;
+  const std::size_t first_stage = report.stages.size();
+  for (int attempt = 0; !attempts.farfield_result; ++attempt) {
+    report.hull_retries = attempt;
+    // A retry's stage timings replace those of the attempt before.
+    report.stages.erase(report.stages.begin() + static_cast<std::ptrdiff_t>(first_stage),
+                        report.stages.end());
+    attempts.layers = march_stage(surface, attempts.march_options, report, log);
+
+    std::optional<Vector3> unsplittable;
+    attempts.interface = interface_stage(attempts.layers, options, attempt, report, log, unsplittable);
+    if (unsplittable) {
+      lower_layers(surface, options, log, attempt, {*unsplittable},
+                   "interface: a cell neither split nor capped", attempts);
+      continue;
+    }
+
+    FarFieldInput& farfield_input = attempts.farfield_input;
+    farfield_input = FarFieldInput();
+    if (options.farfield.sizing == FarFieldSizing::anisotropic)
+      metric_stage(attempts.layers, attempts.interface, report, log, farfield_input);
+    farfield_input.points = attempts.interface.mesh.points;
+    farfield_input.holes = body_points(surface);
+    farfield_input.hull = attempts.interface.hull;
+    std::vector<Vector3> crossings;  // (previous_crossings: those of the last retry)
+    attempts.farfield_result = farfield_stage(surface, options, attempts, attempt, report, log, crossings);
+    if (!attempts.farfield_result)
+      lower_layers(surface, options, log, attempt, crossings,
+                   "farfield: the hull intersects itself near " + point_text(crossings.front()) + " (" +
+                       std::to_string(crossings.size()) + " crossing triangles)",
+                   attempts);
+  }
+  const FarFieldResult& farfield_result = *attempts.farfield_result;
+  log.info("farfield: " + seconds_text(report.stages.back().seconds) + ", " +
+           std::to_string(farfield_result.mesh.cell_count(CellType::tetrahedron)) + " tetrahedra, " +
+           std::to_string(farfield_result.mesh.points.size() - farfield_result.input_point_count) +
+           " new points");
+  return attempts;
+}
+
+// With passes = 0 the stage only measures the tetrahedra.
+void sliver_stage(const SliverOptions& sliver_options, GenerateReport& report, const Log& log,
+                  MixedMesh& mesh) {
+  report.slivers = run_stage("slivers", report, [&] { return remove_slivers(mesh, sliver_options); });
+  const SliverReport& slivers = report.slivers;
+  log.info("slivers: " + seconds_text(report.stages.back().seconds) + ", " +
+           std::to_string(slivers.above_target_before) + " -> " + std::to_string(slivers.above_target_after) +
+           " tetrahedra above " + fixed_text(sliver_options.target_dihedral_degrees) +
+           " deg (largest dihedral " + fixed_text(slivers.largest_dihedral_before) + " -> " +
+           fixed_text(slivers.largest_dihedral_after) + " deg), " + std::to_string(slivers.edge_removals) +
+           " edge removals, " + std::to_string(slivers.face_flips) + " face flips, " +
+           std::to_string(slivers.edge_splits) + " edge splits, " + std::to_string(slivers.point_collapses) +
+           " point collapses, " + std::to_string(slivers.smoothed_points) + " points moved, " +
+           std::to_string(slivers.point_insertions) + " points inserted");
+}
+
 }  // namespace
 
 GenerateResult generate(const GenerateOptions& options, const Log& log) {
@@ -124,200 +362,14 @@ GenerateResult generate_from_surface(const SurfaceMesh& surface, const GenerateO
   GenerateResult result;
   GenerateReport& report = result.report;
   report.surface_elements = to_mixed_mesh(surface).face_count();
-
-  // March, interface, metrics and far field; where the hull handed to the far field
-  // intersects itself, the layers round the crossing are lowered and the four run again.
-  MarchOptions march_options = options.march;
-  BoundaryLayer layers;
-  InterfaceResult interface;
-  FarFieldInput farfield_input;
-  std::optional<FarFieldResult> farfield_result;
-  const std::size_t first_stage = report.stages.size();
-  std::vector<Vector3> previous_crossings;
-  // Lowers the layers round `crossings` for the next attempt, and says why (`reason`).
-  // The hull intersects itself where the layers came too close to each other (a
-  // strongly tapered tip's trailing edge, a stop the blending could not smooth), and an
-  // outer cell is twisted more than it is thick beside an early stop: the columns round
-  // the place stop lower and slope down to it, and the stages run again. Each retry
-  // reaches further and lower.
-  auto lower_layers = [&](int attempt, const std::vector<Vector3>& crossings, const std::string& reason) {
-    // Every crossing TetGen found gets a stop (one for all the crossings within half a
-    // stop's reach of it): a blunt base crosses the sheet's first lines all along the
-    // wing, and a stop at the first crossing alone left the others.
-    // Reach: three layer thicknesses and the surface cells there (twice the distance
-    // to the nearest surface node; thin layers alone reached no face on a small wing),
-    // growing with each retry; depth: half the layers, then half as many again each
-    // time (behind a blunt base the crossings lie low in the layers, and four layers
-    // less per retry never reached them).
-    std::vector<ForcedStop> stops;
-    for (const Vector3& crossing : crossings) {
-      const bool covered = std::any_of(stops.begin(), stops.end(), [&](const ForcedStop& other) {
-        return (other.centre - crossing).norm() < 0.5 * other.radius;
-      });
-      if (covered) continue;
-      double nearest_node = std::numeric_limits<double>::infinity();
-      for (const Vector3& point : surface.points)
-        nearest_node = std::min(nearest_node, (point - crossing).norm());
-      ForcedStop stop;
-      stop.centre = crossing;
-      stop.radius = (attempt + 1) * (3.0 * layers.report.total_thickness + 2.0 * nearest_node);
-      stop.layer = std::max(1, march_options.spacing.layer_count >> (attempt + 1));
-      stops.push_back(stop);
-    }
-    march_options.forced_stops.insert(march_options.forced_stops.end(), stops.begin(), stops.end());
-    log.warning(reason + "; the layers within " + std::to_string(stops.front().radius) + " m of " +
-                std::to_string(stops.size()) + (stops.size() == 1 ? " place" : " places") +
-                " stop by layer " + std::to_string(stops.front().layer) + " (retry " +
-                std::to_string(attempt + 1) + " of " + std::to_string(options.hull_retries) + ")");
-    previous_crossings = crossings;
-  };
-  for (int attempt = 0; !farfield_result; ++attempt) {
-    report.hull_retries = attempt;
-    // A retry's stage timings replace those of the attempt before.
-    report.stages.erase(report.stages.begin() + static_cast<std::ptrdiff_t>(first_stage),
-                        report.stages.end());
-    layers = run_stage("march", report, [&] { return march_layers(surface, march_options, nullptr); });
-    report.march = layers.report;
-    log.info("march: " + seconds_text(report.stages.back().seconds) + ", " +
-             std::to_string(layers.report.layers_completed) + "/" +
-             std::to_string(layers.report.layers_requested) + " layers, " +
-             std::to_string(layers.mesh.cell_count(CellType::hexahedron)) + " hexahedra, " +
-             std::to_string(layers.mesh.cell_count(CellType::prism)) + " prisms, first spacing " +
-             std::to_string(layers.report.first_spacing) + " m, thickness " +
-             std::to_string(layers.report.total_thickness) + " m");
-    if (layers.report.stopped_faces > 0) {
-      const StoppedRegion& lowest = layers.report.stopped.front();  // sorted by layer
-      log.warning("march: growth stopped early on " + std::to_string(layers.report.stopped_faces) +
-                  " faces (" + std::to_string(layers.report.stopped_nodes) + " nodes, " +
-                  std::to_string(layers.report.blended_faces) +
-                  " of them to slope down to the others); the lowest " + std::to_string(lowest.faces) +
-                  " at layer " + std::to_string(lowest.layer) + " near " + point_text(lowest.location) +
-                  ", " + std::to_string(lowest.thickness_lost) + " m of the wall stack lost");
-    }
-
-    std::optional<Vector3> unsplittable;
-    interface = run_stage("interface", report, [&] {
-      const OuterLayer outer = pipeline_detail::outer_layer(
-          layers.mesh, {options.march.outer_hull_marker, options.march.hull_side_marker});
-      InterfaceOptions interface_options = options.interface;
-      // The cells the march tagged for capping, under whatever name it tagged them.
-      if (!interface_options.capped_marker.empty())
-        interface_options.capped_marker = options.march.hull_side_marker;
-      try {
-        return split_interface(layers.mesh, outer, interface_options);
-      } catch (const UnsplittableCellError& error) {
-        // An outer cell twisted more than it is thick (next to where the growth stopped
-        // at a tip's trailing edge: random wing 3 of seed 20): lower layers there are
-        // less twisted.
-        if (attempt >= options.hull_retries) throw;
-        log.warning(error.what());
-        unsplittable = error.location;
-        return InterfaceResult();
-      }
-    });
-    if (unsplittable) {
-      lower_layers(attempt, {*unsplittable}, "interface: a cell neither split nor capped");
-      continue;
-    }
-    log.info("interface: " + seconds_text(report.stages.back().seconds) + ", " +
-             std::to_string(interface.pyramids) + " pyramids, " + std::to_string(interface.tetrahedra) +
-             " tetrahedra, hull of " + std::to_string(interface.hull.size()) + " triangles, " +
-             std::to_string(interface.lowered_caps) + " caps lowered clear of the hull");
-
-    farfield_input = FarFieldInput();
-    if (options.farfield.sizing == FarFieldSizing::anisotropic) {
-      run_stage("metric", report, [&] {
-        std::set<Index> hull_nodes;
-        for (const auto& triangle : interface.hull) hull_nodes.insert(triangle.begin(), triangle.end());
-        // Nodes of the layers take the metrics of the layer cells before the split (the
-        // hexahedra's own shape); points the split added (cap apexes) take those of the
-        // cells around them after it.
-        const Index layer_points = static_cast<Index>(layers.mesh.points.size());
-        std::vector<Index> layer_nodes, added_nodes;
-        for (Index node : hull_nodes) (node < layer_points ? layer_nodes : added_nodes).push_back(node);
-        farfield_input.metric_nodes = layer_nodes;
-        farfield_input.metric_nodes.insert(farfield_input.metric_nodes.end(), added_nodes.begin(),
-                                           added_nodes.end());
-        farfield_input.metrics = node_metrics(layers.mesh, layer_nodes);
-        const std::vector<Matrix3> added_metrics = node_metrics(interface.mesh, added_nodes);
-        farfield_input.metrics.insert(farfield_input.metrics.end(), added_metrics.begin(),
-                                      added_metrics.end());
-        return 0;
-      });
-      log.info("metric: " + seconds_text(report.stages.back().seconds) + ", " +
-               std::to_string(farfield_input.metric_nodes.size()) + " hull node metrics");
-    }
-    farfield_input.points = interface.mesh.points;
-    farfield_input.holes = body_points(surface);
-    farfield_input.hull = interface.hull;
-    FarFieldOptions farfield_options = options.farfield;
-    farfield_options.symmetry_y = surface.symmetry_y;
-    // Far-field sizes are in chords of the wing, not of the hull, whose extent in x
-    // includes the wake.
-    if (farfield_options.reference_chord <= 0.0 && options.surface.wing)
-      farfield_options.reference_chord = options.surface.wing->stations.front().chord;
-    std::vector<Vector3> crossings;  // (previous_crossings: those of the last retry)
-    farfield_result = run_stage("farfield", report, [&]() -> std::optional<FarFieldResult> {
-      try {
-        return farfield(farfield_input, farfield_options, log);
-      } catch (const HullIntersectionError& error) {
-        if (attempt < options.hull_retries) {
-          crossings = error.locations;
-          return std::nullopt;
-        }
-        throw Error(error.what() + layer_hint(layers.report));
-      } catch (const Error& error) {
-        const std::string message = error.what();
-        // TetGen can fail outright on a hull the retries are still mending (a base's
-        // stacks stopped by half the layers: an abort on random wing 22 of seed 11, a
-        // quality pass that never ended on wing 20 of seed 14): the same places are
-        // lowered further, as if it had found the crossings there again.
-        const bool tetgen_failed = message.find("TetGen crashed") != std::string::npos ||
-                                   message.find("did not finish within") != std::string::npos;
-        if (tetgen_failed && !previous_crossings.empty() && attempt < options.hull_retries) {
-          log.warning(message + "; lowering the layers further where the last retry did");
-          crossings = previous_crossings;
-          return std::nullopt;
-        }
-        // A hull the far field cannot fill comes from the layers: say where they stopped
-        // and what to change, not only what TetGen found.
-        if (message.find("intersect") == std::string::npos &&
-            message.find("hull edge") == std::string::npos &&
-            message.find("hull is open") == std::string::npos)
-          throw;
-        throw Error(message + layer_hint(layers.report));
-      }
-    });
-    if (!farfield_result)
-      lower_layers(attempt, crossings,
-                   "farfield: the hull intersects itself near " + point_text(crossings.front()) + " (" +
-                       std::to_string(crossings.size()) + " crossing triangles)");
-  }
-  log.info("farfield: " + seconds_text(report.stages.back().seconds) + ", " +
-           std::to_string(farfield_result->mesh.cell_count(CellType::tetrahedron)) + " tetrahedra, " +
-           std::to_string(farfield_result->mesh.points.size() - farfield_result->input_point_count) +
-           " new points");
+  HullAttempts attempts = grow_to_farfield(surface, options, report, log);
+  FarFieldResult& farfield_result = *attempts.farfield_result;
 
   result.mesh = run_stage("assemble", report, [&] {
-    return pipeline_detail::assemble(interface.mesh, options.interface.hull_marker, *farfield_result,
+    return pipeline_detail::assemble(attempts.interface.mesh, options.interface.hull_marker, farfield_result,
                                      wall_marker_names(surface), options.output.merge_wall_markers);
   });
-  {
-    // With passes = 0 the stage only measures the tetrahedra.
-    report.slivers =
-        run_stage("slivers", report, [&] { return remove_slivers(result.mesh, options.slivers); });
-    const SliverReport& slivers = report.slivers;
-    log.info(
-        "slivers: " + seconds_text(report.stages.back().seconds) + ", " +
-        std::to_string(slivers.above_target_before) + " -> " + std::to_string(slivers.above_target_after) +
-        " tetrahedra above " + fixed_text(options.slivers.target_dihedral_degrees) +
-        " deg (largest dihedral " + fixed_text(slivers.largest_dihedral_before) + " -> " +
-        fixed_text(slivers.largest_dihedral_after) + " deg), " + std::to_string(slivers.edge_removals) +
-        " edge removals, " + std::to_string(slivers.face_flips) + " face flips, " +
-        std::to_string(slivers.edge_splits) + " edge splits, " + std::to_string(slivers.point_collapses) +
-        " point collapses, " + std::to_string(slivers.smoothed_points) + " points moved, " +
-        std::to_string(slivers.point_insertions) + " points inserted");
-  }
+  sliver_stage(options.slivers, report, log, result.mesh);
   result.validity = run_stage("validate", report, [&] { return validate(result.mesh); });
   log.info("validate: " + seconds_text(report.stages.back().seconds) + ", " + result.validity.summary());
 
@@ -327,8 +379,8 @@ GenerateResult generate_from_surface(const SurfaceMesh& surface, const GenerateO
   report.prisms = result.mesh.cell_count(CellType::prism);
   report.pyramids = result.mesh.cell_count(CellType::pyramid);
   report.min_scaled_jacobian = min_scaled_jacobian(result.mesh);
-  farfield_result->mesh = MixedMesh();
-  report.farfield_summary = std::move(*farfield_result);
+  farfield_result.mesh = MixedMesh();
+  report.farfield_summary = std::move(farfield_result);
   report.seconds = total.seconds();
   return result;
 }
