@@ -70,12 +70,9 @@ std::vector<double> span_positions(const WingDefinition& wing, const SurfaceOpti
   return ys;
 }
 
-}  // namespace
-
-SurfaceMesh generate_wing_surface(const WingDefinition& wing_input, const SurfaceOptions& options) {
-  validate_wing(wing_input);
-  // Blunt trailing edges: closed on the section, or kept as a base patch.
-  WingDefinition wing = wing_input;
+// Blunt trailing edges: closed on the section, or kept as a base patch. Returns
+// whether the wing keeps a base.
+bool close_or_keep_trailing_edges(WingDefinition& wing) {
   bool blunt = false;
   for (Airfoil& airfoil : wing.airfoils) {
     if (airfoil.trailing_edge_gap() == 0.0) continue;
@@ -92,8 +89,13 @@ SurfaceMesh generate_wing_surface(const WingDefinition& wing_input, const Surfac
       }
     }
   }
-  check_options(options, blunt);
+  return blunt;
+}
 
+// The wing's own patch round the sections, its points appended to surface.points,
+// and each span station's frame in `frames`.
+StructuredPatch place_wing_patch(const WingDefinition& wing, const SurfaceOptions& options, bool blunt,
+                                 SurfaceMesh& surface, std::vector<SpanStation>& frames) {
   const int lower_cells = options.chordwise_cells / 2;
   const int upper_cells = options.chordwise_cells - lower_cells;
   const int ni = options.chordwise_cells + 1;
@@ -102,10 +104,6 @@ SurfaceMesh generate_wing_surface(const WingDefinition& wing_input, const Surfac
     sections.push_back(section_nodes(airfoil, options, lower_cells, upper_cells));
   const std::vector<double> ys = span_positions(wing, options);
   const int nj = static_cast<int>(ys.size());
-
-  SurfaceMesh surface;
-  surface.symmetry_y = 0.0;
-  surface.symmetry_tolerance = 1e-9 * wing.stations.front().chord;
   const int unique_i = blunt ? ni : ni - 1;  // a sharp trailing edge is one node
 
   StructuredPatch wing_patch;
@@ -114,7 +112,7 @@ SurfaceMesh generate_wing_surface(const WingDefinition& wing_input, const Surfac
   wing_patch.nj = nj;
   wing_patch.leading_edge_i = lower_cells;
   wing_patch.nodes.resize(static_cast<std::size_t>(ni) * static_cast<std::size_t>(nj));
-  std::vector<SpanStation> frames(static_cast<std::size_t>(nj));
+  frames.resize(static_cast<std::size_t>(nj));
   surface.points.reserve(static_cast<std::size_t>(unique_i) * static_cast<std::size_t>(nj));
   for (int j = 0; j < nj; ++j) {
     const StationBlend blend = station_at(wing, ys[static_cast<std::size_t>(j)]);
@@ -131,10 +129,25 @@ SurfaceMesh generate_wing_surface(const WingDefinition& wing_input, const Surfac
   }
   // Root nodes lie exactly on the symmetry plane.
   for (int i = 0; i < ni; ++i) surface.points[static_cast<std::size_t>(wing_patch.node(i, 0))].y() = 0.0;
+  return wing_patch;
+}
 
-  // The trailing-edge line the wake starts from, and the tip outline for the cap.
-  std::vector<Index> trailing_edge(static_cast<std::size_t>(nj));
+// The trailing-edge line the wake starts from, and the tip outline for the cap.
+struct WingEdges {
+  std::vector<Index> trailing_edge;
   std::vector<Index> tip_outline;
+};
+
+// The wing patch and, for a blunt trailing edge, the base patch between its ends.
+WingEdges add_wall_patches(const StructuredPatch& wing_patch, const SurfaceOptions& options, bool blunt,
+                           SurfaceMesh& surface) {
+  const int ni = wing_patch.ni;
+  const int nj = wing_patch.nj;
+  const int unique_i = blunt ? ni : ni - 1;
+  WingEdges edges;
+  std::vector<Index>& trailing_edge = edges.trailing_edge;
+  std::vector<Index>& tip_outline = edges.tip_outline;
+  trailing_edge.resize(static_cast<std::size_t>(nj));
   for (int i = 0; i < unique_i; ++i) tip_outline.push_back(wing_patch.node(i, nj - 1));
   if (blunt) {
     StructuredPatch base;
@@ -162,45 +175,56 @@ SurfaceMesh generate_wing_surface(const WingDefinition& wing_input, const Surfac
     for (int j = 0; j < nj; ++j) trailing_edge[static_cast<std::size_t>(j)] = wing_patch.node(0, j);
     surface.structured.push_back(wing_patch);
   }
+  return edges;
+}
 
-  if (options.wake.enabled) {
-    double downstream_end = -1e300;
-    for (Index node : trailing_edge)
-      downstream_end = std::max(downstream_end, surface.points[static_cast<std::size_t>(node)].x());
-    const double root_chord = wing.stations.front().chord;
-    downstream_end += options.wake.length * root_chord;
-    const double wake_spacing =
-        options.wake.first_spacing > 0.0 ? options.wake.first_spacing : options.trailing_edge_spacing;
-    // The cell count follows from geometric growth on the root line; every other line
-    // keeps that count and its own first spacing (proportional to its chord).
-    const Vector3 root_edge = surface.points[static_cast<std::size_t>(trailing_edge.front())];
-    const int cells =
-        static_cast<int>(geometric_distribution(wake_spacing * root_chord / (downstream_end - root_edge.x()),
-                                                options.wake.growth)
-                             .size()) -
-        1;
-    StructuredPatch wake;
-    wake.name = "wake";
-    wake.role = PatchRole::wake;
-    wake.ni = cells + 1;
-    wake.nj = nj;
-    wake.nodes.resize(static_cast<std::size_t>(wake.ni) * static_cast<std::size_t>(nj));
-    for (int j = 0; j < nj; ++j) {
-      const Vector3 start =
-          surface.points[static_cast<std::size_t>(trailing_edge[static_cast<std::size_t>(j)])];
-      const double length = downstream_end - start.x();
-      const double first = wake_spacing * frames[static_cast<std::size_t>(j)].chord / length;
-      const std::vector<double> positions = vinokur_distribution(cells, std::min(first, 0.5 / cells), 0.0);
-      wake.nodes[static_cast<std::size_t>(j * wake.ni)] = trailing_edge[static_cast<std::size_t>(j)];
-      for (int i = 1; i <= cells; ++i) {
-        wake.nodes[static_cast<std::size_t>(j * wake.ni + i)] = static_cast<Index>(surface.points.size());
-        surface.points.emplace_back(start.x() + positions[static_cast<std::size_t>(i)] * length, start.y(),
-                                    start.z());
-      }
+void add_wake(const WingDefinition& wing, const SurfaceOptions& options,
+              const std::vector<Index>& trailing_edge, const std::vector<SpanStation>& frames,
+              SurfaceMesh& surface) {
+  const int nj = static_cast<int>(trailing_edge.size());
+  double downstream_end = -1e300;
+  for (Index node : trailing_edge)
+    downstream_end = std::max(downstream_end, surface.points[static_cast<std::size_t>(node)].x());
+  const double root_chord = wing.stations.front().chord;
+  downstream_end += options.wake.length * root_chord;
+  const double wake_spacing =
+      options.wake.first_spacing > 0.0 ? options.wake.first_spacing : options.trailing_edge_spacing;
+  // The cell count follows from geometric growth on the root line; every other line
+  // keeps that count and its own first spacing (proportional to its chord).
+  const Vector3 root_edge = surface.points[static_cast<std::size_t>(trailing_edge.front())];
+  const int cells =
+      static_cast<int>(geometric_distribution(wake_spacing * root_chord / (downstream_end - root_edge.x()),
+                                              options.wake.growth)
+                           .size()) -
+      1;
+  StructuredPatch wake;
+  wake.name = "wake";
+  wake.role = PatchRole::wake;
+  wake.ni = cells + 1;
+  wake.nj = nj;
+  wake.nodes.resize(static_cast<std::size_t>(wake.ni) * static_cast<std::size_t>(nj));
+  for (int j = 0; j < nj; ++j) {
+    const Vector3 start =
+        surface.points[static_cast<std::size_t>(trailing_edge[static_cast<std::size_t>(j)])];
+    const double length = downstream_end - start.x();
+    const double first = wake_spacing * frames[static_cast<std::size_t>(j)].chord / length;
+    const std::vector<double> positions = vinokur_distribution(cells, std::min(first, 0.5 / cells), 0.0);
+    wake.nodes[static_cast<std::size_t>(j * wake.ni)] = trailing_edge[static_cast<std::size_t>(j)];
+    for (int i = 1; i <= cells; ++i) {
+      wake.nodes[static_cast<std::size_t>(j * wake.ni + i)] = static_cast<Index>(surface.points.size());
+      surface.points.emplace_back(start.x() + positions[static_cast<std::size_t>(i)] * length, start.y(),
+                                  start.z());
     }
-    surface.structured.push_back(wake);
   }
+  surface.structured.push_back(wake);
+}
 
+void add_tip_cap(const StructuredPatch& wing_patch, const SurfaceOptions& options, bool blunt,
+                 const WingEdges& edges, SurfaceMesh& surface) {
+  const int ni = wing_patch.ni;
+  const int nj = wing_patch.nj;
+  const std::vector<Index>& trailing_edge = edges.trailing_edge;
+  const std::vector<Index>& tip_outline = edges.tip_outline;
   TrianglePatch tip;
   tip.name = "tip";
   const std::size_t first_cap_point = surface.points.size();
@@ -225,6 +249,24 @@ SurfaceMesh generate_wing_surface(const WingDefinition& wing_input, const Surfac
   tip.triangles = triangulate_planar_cap(surface.points, tip_outline, options.tip, true, inner_edges);
   if (options.tip.rounded) round_cap(surface.points, tip_outline, first_cap_point, true);
   surface.unstructured.push_back(std::move(tip));
+}
+
+}  // namespace
+
+SurfaceMesh generate_wing_surface(const WingDefinition& wing_input, const SurfaceOptions& options) {
+  validate_wing(wing_input);
+  WingDefinition wing = wing_input;
+  const bool blunt = close_or_keep_trailing_edges(wing);
+  check_options(options, blunt);
+
+  SurfaceMesh surface;
+  surface.symmetry_y = 0.0;
+  surface.symmetry_tolerance = 1e-9 * wing.stations.front().chord;
+  std::vector<SpanStation> frames;
+  const StructuredPatch wing_patch = place_wing_patch(wing, options, blunt, surface, frames);
+  const WingEdges edges = add_wall_patches(wing_patch, options, blunt, surface);
+  if (options.wake.enabled) add_wake(wing, options, edges.trailing_edge, frames, surface);
+  add_tip_cap(wing_patch, options, blunt, edges, surface);
   return surface;
 }
 
