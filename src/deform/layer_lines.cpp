@@ -371,7 +371,6 @@ void carry_top_offsets(const LayerLines& lines, const BoundaryMotion& boundary,
   };
   std::vector<char> seen(point_count, 0);
   std::vector<Top> tops;
-  std::vector<Vector3> positions;
   for (std::size_t node = 0; node < point_count; ++node) {
     if (lines.base[node] < 0) continue;
     const std::size_t base = static_cast<std::size_t>(lines.base[node]);
@@ -389,15 +388,17 @@ void carry_top_offsets(const LayerLines& lines, const BoundaryMotion& boundary,
       entry.reach = std::max(
           entry.reach, (original[static_cast<std::size_t>(lines.star_nodes[slot])] - original[base]).norm());
     tops.push_back(entry);
-    positions.push_back(entry.position);
   }
   if (tops.empty()) return;
   auto fade = [](double fraction) {
     return fraction >= 1.0 ? 0.0 : (1.0 - fraction) * (1.0 - fraction) * (1.0 + 2.0 * fraction);
   };
-  using Tree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, PointCloud<>>,
-                                                   PointCloud<>, 3, Index>;
-  const PointCloud<> cloud{&positions};
+  struct TopPosition {
+    const Vector3& operator()(const Top& top) const { return top.position; }
+  };
+  using Cloud = PointCloud<Top, TopPosition>;
+  using Tree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, Cloud>, Cloud, 3, Index>;
+  const Cloud cloud{&tops};
   const Tree tree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(10));
   constexpr std::size_t nearest_count = 8;
   parallel_items(point_count, [&](std::size_t node) {
