@@ -116,6 +116,60 @@ struct Step {
 
 enum class ColumnEnd { inside, boundary };
 
+// The apex of the cell across `entry` when that cell is a pyramid on it (a tetrahedron
+// on a triangle): the bottom piece of an outer cell or stack the interface split about
+// one point (docs/interface.md); -1 otherwise.
+Index split_apex(const DualMesh& dual, std::size_t cell, const Face& entry) {
+  if (dual.cell_size(cell) != entry.count + 1) return -1;
+  Index apex = -1;
+  const Index* nodes = dual.nodes(cell);
+  for (int k = 0; k < dual.cell_size(cell); ++k)
+    if (!entry.has(nodes[k])) {
+      if (apex >= 0) return -1;
+      apex = nodes[k];
+    }
+  return apex;
+}
+
+// Continues a column through a split stack. Its pieces keep the stack's side quads as
+// pyramid bases, so each entry node's next node up is its neighbour along the side quad
+// over its entry edge that leaves the entry face; the climb ends at the stack's top
+// (the outer face, where no side quad rises further).
+void climb_split_stack(const DualMesh& dual, Index apex, Face entry, std::vector<Step>& steps) {
+  std::vector<std::array<Index, 4>> sides;
+  const std::size_t apex_node = static_cast<std::size_t>(apex);
+  for (std::size_t at = dual.point_cell_offsets[apex_node]; at < dual.point_cell_offsets[apex_node + 1];
+       ++at) {
+    const std::size_t piece = static_cast<std::size_t>(dual.point_cells[at]);
+    if (dual.cell_size(piece) != 5 || dual.nodes(piece)[4] != apex) continue;
+    const Index* base = dual.nodes(piece);
+    sides.push_back({base[0], base[1], base[2], base[3]});
+  }
+  Face below;
+  for (std::size_t level = 0; level <= sides.size(); ++level) {
+    Face next;
+    next.count = entry.count;
+    for (int k = 0; k < entry.count; ++k) {
+      const Index node = entry.nodes[k], along = entry.nodes[(k + 1) % entry.count];
+      for (const auto& side : sides) {
+        const auto has = [&](Index n) { return std::find(side.begin(), side.end(), n) != side.end(); };
+        if (!has(node) || !has(along) ||
+            std::all_of(entry.nodes.begin(), entry.nodes.begin() + entry.count, has))
+          continue;
+        if (std::any_of(below.nodes.begin(), below.nodes.begin() + below.count, has)) continue;
+        const int position = static_cast<int>(std::find(side.begin(), side.end(), node) - side.begin());
+        const Index before = side[static_cast<std::size_t>((position + 3) % 4)];
+        next.nodes[k] = before == along ? side[static_cast<std::size_t>((position + 1) % 4)] : before;
+        break;
+      }
+      if (next.nodes[k] < 0) return;
+    }
+    for (int k = 0; k < entry.count; ++k) steps.push_back({next.nodes[k], entry.nodes[k]});
+    below = entry;
+    entry = next;
+  }
+}
+
 // Walks the column that enters `cell` through `entry`; `steps` gets each node's
 // neighbour one layer down, `cells` the column's cells. `stamp` marks the cells of this
 // walk (a column that comes back to a cell is not a stack).
@@ -134,6 +188,8 @@ ColumnEnd walk_column(const DualMesh& dual, std::size_t cell, Face entry, std::v
     cell = static_cast<std::size_t>(next);
     entry = crossing.opposite;
   }
+  const Index apex = split_apex(dual, cell, entry);
+  if (apex >= 0) climb_split_stack(dual, apex, entry, steps);
   return ColumnEnd::inside;
 }
 
@@ -207,7 +263,8 @@ LayerLines find_layer_lines(const DualMesh& dual, const std::vector<MarkerRole>&
     }
     add_star(entry);
     const std::size_t cell = static_cast<std::size_t>(dual.face_cell[face]);
-    if (!is_layer_cell(dual, cell, entry.count)) continue;
+    // (A column split as one stack down to the wall starts with the stack's pyramid.)
+    if (!is_layer_cell(dual, cell, entry.count) && split_apex(dual, cell, entry) < 0) continue;
     const ColumnEnd end = walk_column(dual, cell, entry, steps, column_cells, stamp, ++walk);
     // A column that reaches a boundary is a structured block's (a C- or O-grid): its
     // cells are no sheet's either. Left unmarked, every face of such a block next to a

@@ -23,8 +23,8 @@ using FaceKey = std::array<Index, 4>;
 
 // Checks the outer-layer listing against the mesh before anything is built, so a bad
 // listing fails with the offending cell named rather than with a broken mesh.
-void validate(const MixedMesh& mesh, const OuterLayer& layer) {
-  const FaceConnectivity connectivity = match_faces(mesh);
+FaceConnectivity validate(const MixedMesh& mesh, const OuterLayer& layer) {
+  FaceConnectivity connectivity = match_faces(mesh);
   std::set<std::array<std::size_t, 3>> boundary;
   for (const CellFace& face : connectivity.boundary)
     boundary.insert({static_cast<std::size_t>(index(face.type)), static_cast<std::size_t>(face.cell),
@@ -53,6 +53,7 @@ void validate(const MixedMesh& mesh, const OuterLayer& layer) {
   };
   check(CellType::hexahedron, layer.hexahedra);
   check(CellType::prism, layer.prisms);
+  return connectivity;
 }
 
 // Position (0 or 1) of the first node of the chosen diagonal q[s]–q[s+2].
@@ -74,14 +75,16 @@ namespace {
 
 // The pieces a split about `apex` makes: pyramids on the quads that stay, two
 // tetrahedra on every outer quad (along its chosen diagonal), one on every triangle.
+// Faces in `skipped_faces` (inside a stack, see Level) get none.
 // visit(CellType, nodes, is_hull_triangle) with the apex as node index `apex_index`.
 // Bit f of `flipped` cuts outer quad f along the other diagonal than the rule's.
 template <typename Visit>
 void for_each_piece(CellType type, const std::vector<Vector3>& points, const Index* nodes,
-                    unsigned outer_faces, unsigned flipped, const InterfaceOptions& options, Index apex_index,
-                    Visit visit) {
+                    unsigned outer_faces, unsigned skipped_faces, unsigned flipped,
+                    const InterfaceOptions& options, Index apex_index, Visit visit) {
   const CellDescriptor& shape = descriptor(type);
   for (int face = 0; face < shape.face_count; ++face) {
+    if ((skipped_faces >> face) & 1u) continue;
     const LocalFace& local = shape.faces[static_cast<std::size_t>(face)];
     Index corners[4] = {-1, -1, -1, -1};  // outward from the cell
     for (int corner = 0; corner < local.node_count; ++corner)
@@ -108,124 +111,275 @@ void for_each_piece(CellType type, const std::vector<Vector3>& points, const Ind
   }
 }
 
-// The worst piece of a split about the last point of `points`: the smallest corner
-// Jacobian (scaled), negative when a piece is inverted or tangled.
-double worst_piece(CellType type, const std::vector<Vector3>& points, const Index* nodes,
-                   unsigned outer_faces, unsigned flipped, const InterfaceOptions& options) {
-  double worst = 1.0;
-  const Index apex = static_cast<Index>(points.size() - 1);
-  for_each_piece(type, points, nodes, outer_faces, flipped, options, apex,
-                 [&](CellType piece, const Index* corners, bool) {
-                   const CellShape shape = cell_shape(piece, points, corners);
-                   worst = std::min(
-                       worst, shape.valid() ? shape.min_corner_jacobian : -1.0 - shape.negative_corners);
-                 });
-  return worst;
+// One cell of what is split about one point: the outer cell alone, or a stack of it and
+// the cells under it in its column (the faces between them skipped). Only the first
+// level has outer faces.
+struct Level {
+  const Index* nodes = nullptr;
+  unsigned outer_faces = 0u;
+  unsigned skipped_faces = 0u;
+};
+
+template <typename Visit>
+void for_each_stack_piece(CellType type, const std::vector<Vector3>& points, const std::vector<Level>& levels,
+                          unsigned flipped, const InterfaceOptions& options, Index apex_index, Visit visit) {
+  for (const Level& level : levels)
+    for_each_piece(type, points, level.nodes, level.outer_faces, level.skipped_faces, flipped, options,
+                   apex_index, visit);
 }
 
-// The split point: the cell centre (Wild Fig. 2) unless a piece about it is inverted
-// or nearly so (a thin cell with a warped face), then the best point a compass search
-// around the centre finds. The last point of `points` is the scratch slot for the
-// candidate. Returns the worst piece about that point in `best_worst`.
-Vector3 split_point(CellType type, std::vector<Vector3>& points, const Index* nodes, unsigned outer_faces,
-                    unsigned flipped, const InterfaceOptions& options, double& best_worst) {
-  Vector3 best = cell_centre(type, points, nodes);
-  points.back() = best;
-  best_worst = worst_piece(type, points, nodes, outer_faces, flipped, options);
+// The quality of a split about the last point of `points`: the worst piece's smallest
+// corner Jacobian (scaled; negative when a piece is inverted or tangled) and the largest
+// dihedral angle of its tetrahedra.
+struct PieceQuality {
+  double worst = 1.0;
+  double largest_dihedral = 0.0;
+};
+
+PieceQuality piece_quality(CellType type, const std::vector<Vector3>& points,
+                           const std::vector<Level>& levels, unsigned flipped,
+                           const InterfaceOptions& options) {
+  PieceQuality quality;
+  const Index apex = static_cast<Index>(points.size() - 1);
+  for_each_stack_piece(
+      type, points, levels, flipped, options, apex, [&](CellType piece, const Index* corners, bool) {
+        const CellShape shape = cell_shape(piece, points, corners);
+        quality.worst = std::min(quality.worst,
+                                 shape.valid() ? shape.min_corner_jacobian : -1.0 - shape.negative_corners);
+        if (piece == CellType::tetrahedron) {
+          auto at = [&](int k) -> const Vector3& { return points[static_cast<std::size_t>(corners[k])]; };
+          quality.largest_dihedral =
+              std::max(quality.largest_dihedral, largest_dihedral_degrees(at(0), at(1), at(2), at(3)));
+        }
+      });
+  return quality;
+}
+
+// The split point: the centre (Wild Fig. 2; of a stack, the mean of its cells' centres)
+// unless a piece about it is inverted or nearly so (a thin cell with a warped face), then
+// the best point a compass search around the centre finds. The last point of `points`
+// is the scratch slot for the candidate. Returns the quality about that point in `best`.
+Vector3 split_point(CellType type, std::vector<Vector3>& points, const std::vector<Level>& levels,
+                    unsigned flipped, const InterfaceOptions& options, PieceQuality& best) {
+  Vector3 centre = Vector3::Zero();
+  for (const Level& level : levels) centre += cell_centre(type, points, level.nodes);
+  centre /= static_cast<double>(levels.size());
+  points.back() = centre;
+  best = piece_quality(type, points, levels, flipped, options);
   double step = 0.0;
-  for (int corner = 0; corner < node_count(type); ++corner)
-    step = std::max(step, (points[static_cast<std::size_t>(nodes[corner])] - best).norm());
+  for (const Level& level : levels)
+    for (int corner = 0; corner < node_count(type); ++corner)
+      step = std::max(step, (points[static_cast<std::size_t>(level.nodes[corner])] - centre).norm());
   step *= 0.25;
   const Vector3 directions[6] = {Vector3::UnitX(),  -Vector3::UnitX(), Vector3::UnitY(),
                                  -Vector3::UnitY(), Vector3::UnitZ(),  -Vector3::UnitZ()};
-  for (int iteration = 0; iteration < 60 && best_worst < options.centre_quality; ++iteration) {
+  Vector3 best_point = centre;
+  for (int iteration = 0; iteration < 60 && best.worst < options.centre_quality; ++iteration) {
     bool improved = false;
     for (const Vector3& direction : directions) {
-      points.back() = best + step * direction;
-      const double worst = worst_piece(type, points, nodes, outer_faces, flipped, options);
-      if (worst > best_worst) {
-        best_worst = worst;
-        best = points.back();
+      points.back() = best_point + step * direction;
+      const PieceQuality quality = piece_quality(type, points, levels, flipped, options);
+      if (quality.worst > best.worst) {
+        best = quality;
+        best_point = points.back();
         improved = true;
       }
     }
     if (!improved) step *= 0.5;
   }
-  return best;
+  return best_point;
 }
 
 // Where and how a cell is split: the split point, the outer quads cut along the other
-// diagonal than the rule's (bits as in for_each_piece), and the worst piece (not
-// positive: no split makes every piece valid).
+// diagonal than the rule's (bits as in for_each_piece), the worst piece (not positive:
+// no split makes every piece valid), the largest dihedral angle of the tetrahedra, and
+// the cells split about the point (the outer cell, then any under it in a stack).
 struct SplitChoice {
   Vector3 point = Vector3::Zero();
   unsigned flipped = 0u;
   double worst = 0.0;
+  double largest_dihedral = 180.0;
+  std::vector<std::size_t> cells;
+  std::vector<unsigned> skipped_faces;  // per cell: the faces inside the stack
 };
 
-// The split of one cell. The search works on a copy of the cell's nodes alone, numbered
-// in the order of their numbers in the mesh (the diagonal rule compares node numbers),
-// with the candidate point after them, so that cells can be searched side by side.
-SplitChoice choose_split(CellType type, const std::vector<Vector3>& mesh_points, const Index* mesh_nodes,
-                         unsigned outer_faces, const InterfaceOptions& options) {
+// The split of one cell or stack (`levels`, in mesh numbering). The search works on a
+// copy of the stack's nodes alone, numbered in the order of their numbers in the mesh
+// (the diagonal rule compares node numbers), with the candidate point after them, so
+// that cells can be searched side by side.
+SplitChoice choose_split(CellType type, const std::vector<Vector3>& mesh_points,
+                         const std::vector<Level>& mesh_levels, const InterfaceOptions& options) {
   const int count = node_count(type);
-  std::array<Index, 8> nodes{};
-  std::vector<Vector3> points(static_cast<std::size_t>(count) + 1);
-  for (int corner = 0; corner < count; ++corner) {
-    Index rank = 0;
-    for (int other = 0; other < count; ++other) rank += mesh_nodes[other] < mesh_nodes[corner];
-    nodes[static_cast<std::size_t>(corner)] = rank;
-    points[static_cast<std::size_t>(rank)] = mesh_points[static_cast<std::size_t>(mesh_nodes[corner])];
+  std::vector<Index> used;
+  for (const Level& level : mesh_levels) used.insert(used.end(), level.nodes, level.nodes + count);
+  std::sort(used.begin(), used.end());
+  used.erase(std::unique(used.begin(), used.end()), used.end());
+  std::vector<Vector3> points(used.size() + 1);
+  for (std::size_t rank = 0; rank < used.size(); ++rank)
+    points[rank] = mesh_points[static_cast<std::size_t>(used[rank])];
+  std::vector<std::array<Index, 8>> nodes(mesh_levels.size());
+  std::vector<Level> levels = mesh_levels;
+  for (std::size_t level = 0; level < levels.size(); ++level) {
+    for (int corner = 0; corner < count; ++corner)
+      nodes[level][static_cast<std::size_t>(corner)] = static_cast<Index>(
+          std::lower_bound(used.begin(), used.end(), mesh_levels[level].nodes[corner]) - used.begin());
+    levels[level].nodes = nodes[level].data();
   }
   // The rule's diagonals first; where no split point makes every piece valid (an outer
   // quad twisted by more than the cell is thick, as at a wing tip's trailing edge), the
   // other diagonal of some outer quads: one of the two folds of a twisted quad leans
   // towards the cell's inside. Both triangles stay in this cell, so the hull conforms.
+  const unsigned outer_faces = levels.front().outer_faces;
   std::vector<unsigned> outer_quads;
   for (int face = 0; face < descriptor(type).face_count; ++face)
     if (((outer_faces >> face) & 1u) &&
         descriptor(type).faces[static_cast<std::size_t>(face)].node_count == 4)
       outer_quads.push_back(1u << face);
   SplitChoice choice;
-  choice.point = split_point(type, points, nodes.data(), outer_faces, choice.flipped, options, choice.worst);
+  PieceQuality quality;
+  choice.point = split_point(type, points, levels, choice.flipped, options, quality);
+  choice.worst = quality.worst;
+  choice.largest_dihedral = quality.largest_dihedral;
   const unsigned combinations = 1u << std::min<std::size_t>(outer_quads.size(), 4);
   for (unsigned combination = 1; combination < combinations && choice.worst <= 0.0; ++combination) {
     unsigned candidate = 0u;
     for (std::size_t quad = 0; quad < outer_quads.size() && quad < 4; ++quad)
       if ((combination >> quad) & 1u) candidate |= outer_quads[quad];
-    double candidate_worst = 0.0;
-    const Vector3 candidate_point =
-        split_point(type, points, nodes.data(), outer_faces, candidate, options, candidate_worst);
-    if (candidate_worst > choice.worst) choice = {candidate_point, candidate, candidate_worst};
+    PieceQuality candidate_quality;
+    const Vector3 candidate_point = split_point(type, points, levels, candidate, options, candidate_quality);
+    if (candidate_quality.worst > choice.worst)
+      choice = {
+          candidate_point, candidate, candidate_quality.worst, candidate_quality.largest_dihedral, {}, {}};
   }
   return choice;
 }
 
-// Splits one cell about its chosen point: a pyramid on every quad face that stays, two
-// tetrahedra on every outer quad, one tetrahedron on every triangle face. Outer faces
-// join the hull.
-void split_cell(CellType type, std::size_t cell, const Index* nodes, unsigned outer_faces, int region,
+// The face of a cell opposite `face` (sharing no node with it), or -1.
+int opposite_face(CellType type, int face) {
+  const CellDescriptor& shape = descriptor(type);
+  const LocalFace& given = shape.faces[static_cast<std::size_t>(face)];
+  for (int other = 0; other < shape.face_count; ++other) {
+    const LocalFace& candidate = shape.faces[static_cast<std::size_t>(other)];
+    bool shared = false;
+    for (int a = 0; a < given.node_count; ++a)
+      for (int b = 0; b < candidate.node_count; ++b)
+        shared = shared ||
+                 given.nodes[static_cast<std::size_t>(a)] == candidate.nodes[static_cast<std::size_t>(b)];
+    if (!shared) return other;
+  }
+  return -1;
+}
+
+// The cell of the same type across each face of each cell of `type`: (cell, its local
+// face), or (-1, -1).
+using FaceNeighbours = std::vector<std::pair<Index, int>>;
+
+FaceNeighbours same_type_neighbours(const MixedMesh& mesh, CellType type,
+                                    const FaceConnectivity& connectivity) {
+  const int faces = descriptor(type).face_count;
+  FaceNeighbours neighbours(mesh.cell_count(type) * static_cast<std::size_t>(faces), {-1, -1});
+  for (const auto& pair : connectivity.interior) {
+    if (pair[0].type != type || pair[1].type != type) continue;
+    for (int side = 0; side < 2; ++side) {
+      const CellFace& here = pair[static_cast<std::size_t>(side)];
+      const CellFace& there = pair[static_cast<std::size_t>(1 - side)];
+      neighbours[static_cast<std::size_t>(here.cell) * static_cast<std::size_t>(faces) +
+                 static_cast<std::size_t>(here.local_face)] = {there.cell, there.local_face};
+    }
+  }
+  return neighbours;
+}
+
+// The split of an outer cell. An outer hexahedron (or prism) whose split about its centre leaves a
+// tetrahedron with a dihedral angle above options.stack_dihedral (a layer cell much
+// thinner than wide: the outer quad's two tetrahedra have their apex half the cell's
+// height under the quad's diagonal, so their angle at the apex edge opposite it is
+// 180 degrees less about twice atan(h / w)) is split together with the hexahedra under
+// it, as one stack about its middle: the lowest stack whose tetrahedra meet the bound,
+// else the best one. The stack's side quads keep their pyramids, so neighbouring
+// columns conform whatever their own stack; a side quad that faces the far field (a
+// column above a neighbour whose growth stopped) gets its two tetrahedra as in a single
+// cell. The top is the largest outer quad; capped cells never join a stack.
+SplitChoice choose_stack(const MixedMesh& mesh, CellType type, std::size_t cell,
+                         const std::vector<unsigned>& outer_faces, const std::vector<char>& capped,
+                         const FaceNeighbours& neighbours, const InterfaceOptions& options) {
+  std::vector<Level> levels{{mesh.cell(type, cell), outer_faces[cell], 0u}};
+  SplitChoice best = choose_split(type, mesh.points, levels, options);
+  best.cells = {cell};
+  best.skipped_faces = {0u};
+  if (best.worst <= 0.0 || best.largest_dihedral <= options.stack_dihedral) return best;
+  const CellDescriptor& shape = descriptor(type);
+  int top = -1;
+  double top_area = 0.0;
+  for (int face = 0; face < shape.face_count; ++face) {
+    if (!((outer_faces[cell] >> face) & 1u)) continue;
+    Index corners[4];
+    const int count = face_nodes(mesh, {type, static_cast<Index>(cell), face}, corners);
+    const double area = face_area_vector(mesh.points, corners, count).norm();
+    if (area > top_area) top = face, top_area = area;
+  }
+  std::vector<std::size_t> cells{cell};
+  int down = opposite_face(type, top);
+  double previous = best.largest_dihedral;
+  while (static_cast<int>(cells.size()) < options.stack_cells && down >= 0 &&
+         !((levels.back().outer_faces >> down) & 1u)) {
+    const auto [below, up] = neighbours[cells.back() * static_cast<std::size_t>(shape.face_count) +
+                                        static_cast<std::size_t>(down)];
+    if (below < 0 || capped[static_cast<std::size_t>(below)]) break;
+    const unsigned below_outer = outer_faces[static_cast<std::size_t>(below)];
+    if ((below_outer >> up) & 1u) break;
+    levels.back().skipped_faces |= 1u << down;
+    levels.push_back({mesh.cell(type, static_cast<std::size_t>(below)), below_outer, 1u << up});
+    cells.push_back(static_cast<std::size_t>(below));
+    SplitChoice candidate = choose_split(type, mesh.points, levels, options);
+    if (candidate.worst > 0.0 && candidate.largest_dihedral < best.largest_dihedral) {
+      best = std::move(candidate);
+      best.cells = cells;
+      for (const Level& level : levels) best.skipped_faces.push_back(level.skipped_faces);
+    }
+    // The angle falls as the stack grows until it is about as high as wide.
+    if (best.largest_dihedral <= options.stack_dihedral || candidate.largest_dihedral >= previous) break;
+    previous = candidate.largest_dihedral;
+    down = opposite_face(type, up);
+  }
+  return best;
+}
+
+// Splits one cell or stack about its chosen point: a pyramid on every quad face that
+// stays, two tetrahedra on every outer quad, one tetrahedron on every triangle face.
+// Outer faces join the hull.
+void split_cell(const MixedMesh& mesh, CellType type, const std::vector<unsigned>& outer_faces,
                 const InterfaceOptions& options, const SplitChoice& choice, InterfaceResult& result) {
   MixedMesh& out = result.mesh;
   const Vector3& point = choice.point;
   const Index centre = static_cast<Index>(out.points.size());
   out.points.push_back(point);
   result.centres.push_back(centre);
-  for_each_piece(type, out.points, nodes, outer_faces, choice.flipped, options, centre,
-                 [&](CellType piece, const Index* corners, bool outer) {
-                   if (!cell_shape(piece, out.points, corners).valid())
-                     throw Error("interface: splitting " + std::string(name(type)) + " " +
-                                 std::to_string(cell) + " near " + point_text(point) + " gives an inverted " +
-                                 std::string(name(piece)));
-                   out.add_cell(piece, corners, region);
-                   if (piece == CellType::pyramid) {
-                     ++result.pyramids;
-                     return;
-                   }
-                   ++result.tetrahedra;
-                   // The tetrahedron (a, c, b, apex) of an outer triangle a-b-c.
-                   if (outer) result.hull.push_back({corners[0], corners[2], corners[1]});
-                 });
+  const std::size_t cell = choice.cells.front();
+  for (std::size_t level = 0; level < choice.cells.size(); ++level) {
+    const std::size_t here = choice.cells[level];
+    const unsigned skipped = choice.skipped_faces.empty() ? 0u : choice.skipped_faces[level];
+    const int region = mesh.block(type).regions[here];
+    for_each_piece(type, out.points, mesh.cell(type, here), outer_faces[here], skipped, choice.flipped,
+                   options, centre, [&](CellType piece, const Index* corners, bool outer) {
+                     if (!cell_shape(piece, out.points, corners).valid())
+                       throw Error("interface: splitting " + std::string(name(type)) + " " +
+                                   std::to_string(cell) + " near " + point_text(point) +
+                                   " gives an inverted " + std::string(name(piece)));
+                     out.add_cell(piece, corners, region);
+                     if (piece == CellType::pyramid) {
+                       ++result.pyramids;
+                       return;
+                     }
+                     ++result.tetrahedra;
+                     // The tetrahedron (a, c, b, apex) of an outer triangle a-b-c.
+                     if (outer) result.hull.push_back({corners[0], corners[2], corners[1]});
+                   });
+  }
+  if (choice.cells.size() > 1) {
+    ++result.stacks;
+    result.stacked_cells += choice.cells.size();
+  }
 }
 
 constexpr double minimum_cap_reach = 0.4;
@@ -323,7 +477,7 @@ InterfaceResult split_interface(const MixedMesh& mesh, const OuterLayer& layer,
                                       std::pair{"marked_cap_height", options.marked_cap_height}})
     if (!(value > 0.0) || !std::isfinite(value))
       throw Error(std::string("interface: ") + option + " must be > 0, got " + std::to_string(value));
-  validate(mesh, layer);
+  const FaceConnectivity connectivity = validate(mesh, layer);
 
   InterfaceResult result;
   MixedMesh& out = result.mesh;
@@ -378,6 +532,7 @@ InterfaceResult split_interface(const MixedMesh& mesh, const OuterLayer& layer,
   std::set<FaceKey> hull_faces;  // to drop the old tags of the outer faces
   for (const auto& [type, cells] :
        {std::pair{CellType::hexahedron, &layer.hexahedra}, std::pair{CellType::prism, &layer.prisms}}) {
+    const FaceNeighbours neighbours = same_type_neighbours(mesh, type, connectivity);
     std::vector<unsigned> outer_faces(mesh.cell_count(type), 0u);
     std::vector<std::size_t> order;
     for (const OuterCell& outer : *cells) {
@@ -409,13 +564,6 @@ InterfaceResult split_interface(const MixedMesh& mesh, const OuterLayer& layer,
         capped[cell] = 0;
       split[cell] = quad && !capped[cell];
     }
-    const CellBlock& block = mesh.block(type);
-    for (std::size_t cell = 0; cell < outer_faces.size(); ++cell)
-      if (!split[cell]) out.add_cell(type, mesh.cell(type, cell), block.regions[cell]);
-    for (std::size_t cell : order)
-      if (capped[cell])
-        cap_cell(type, cell, mesh.cell(type, cell), outer_faces[cell], block.regions[cell], options,
-                 options.marked_cap_height, false, result, &tall_caps);
     // The split points, found side by side: each search evaluates hundreds of piece
     // shapes on the thin cells of free edges, and depends on its own cell alone.
     std::vector<SplitChoice> choices(order.size());
@@ -424,20 +572,45 @@ InterfaceResult split_interface(const MixedMesh& mesh, const OuterLayer& layer,
                         for (std::size_t item = range.begin(); item != range.end(); ++item) {
                           const std::size_t cell = order[item];
                           if (split[cell])
-                            choices[item] = choose_split(type, mesh.points, mesh.cell(type, cell),
-                                                         outer_faces[cell], options);
+                            choices[item] =
+                                choose_stack(mesh, type, cell, outer_faces, capped, neighbours, options);
                         }
                       });
+    // Each cell goes to one split: a stack that reaches a cell another split took
+    // already is split alone, and an outer cell a stack took is not split again.
+    std::vector<char> stacked(outer_faces.size(), 0);
+    for (std::size_t item = 0; item < order.size(); ++item) {
+      const std::size_t cell = order[item];
+      SplitChoice& choice = choices[item];
+      if (!split[cell]) continue;
+      if (stacked[cell]) {
+        choice.cells.clear();
+        continue;
+      }
+      if (std::any_of(choice.cells.begin() + 1, choice.cells.end(),
+                      [&](std::size_t below) { return stacked[below] != 0; })) {
+        choice = choose_split(type, mesh.points, {{mesh.cell(type, cell), outer_faces[cell], 0u}}, options);
+        choice.cells = {cell};
+      }
+      for (std::size_t taken : choice.cells) stacked[taken] = 1;
+    }
+    const CellBlock& block = mesh.block(type);
+    for (std::size_t cell = 0; cell < outer_faces.size(); ++cell)
+      if (!stacked[cell]) out.add_cell(type, mesh.cell(type, cell), block.regions[cell]);
+    for (std::size_t cell : order)
+      if (capped[cell])
+        cap_cell(type, cell, mesh.cell(type, cell), outer_faces[cell], block.regions[cell], options,
+                 options.marked_cap_height, false, result, &tall_caps);
     for (std::size_t item = 0; item < order.size(); ++item) {
       const std::size_t cell = order[item];
       if (capped[cell]) continue;
       if (split[cell]) {
+        if (choices[item].cells.empty()) continue;  // in a stack split with the cell above
         // The centre split unless no split point keeps every piece valid (thin cells with
         // a warped face): then, if allowed, the cell stays whole and its outer quads are
         // capped; if not, split_cell names the inverted piece.
         if (choices[item].worst > 0.0 || !options.cap_unsplittable_cells) {
-          split_cell(type, cell, mesh.cell(type, cell), outer_faces[cell], block.regions[cell], options,
-                     choices[item], result);
+          split_cell(mesh, type, outer_faces, options, choices[item], result);
         } else {
           out.add_cell(type, mesh.cell(type, cell), block.regions[cell]);
           cap_cell(type, cell, mesh.cell(type, cell), outer_faces[cell], block.regions[cell], options,

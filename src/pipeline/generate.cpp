@@ -202,7 +202,9 @@ InterfaceResult interface_stage(const BoundaryLayer& layers, const GenerateOptio
     log.info("interface: " + seconds_text(report.stages.back().seconds) + ", " +
              std::to_string(interface.pyramids) + " pyramids, " + std::to_string(interface.tetrahedra) +
              " tetrahedra, hull of " + std::to_string(interface.hull.size()) + " triangles, " +
-             std::to_string(interface.lowered_caps) + " caps lowered clear of the hull");
+             std::to_string(interface.lowered_caps) + " caps lowered clear of the hull, " +
+             std::to_string(interface.stacks) + " outer cells split with the " +
+             std::to_string(interface.stacked_cells - interface.stacks) + " cells under them");
   return interface;
 }
 

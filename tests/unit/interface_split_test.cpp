@@ -7,6 +7,7 @@
 
 #include "mixmesh/core/error.hpp"
 #include "mixmesh/interface/interface_split.hpp"
+#include "mixmesh/mesh/cell_geometry.hpp"
 #include "mixmesh/mesh/face_connectivity.hpp"
 #include "reference_cells.hpp"
 
@@ -107,7 +108,9 @@ TEST(InterfaceSplit, ShearedHexahedronSplitsIntoValidPiecesOfTheSameVolume) {
 TEST(InterfaceSplit, BlockOfThreeByThreeByTwoStaysConformingWithTheInnerLayer) {
   for (auto diagonal : {HullDiagonal::shorter, HullDiagonal::smallest_node}) {
     const MixedMesh input = hexahedron_block(3, 3, 2, shear);
-    const InterfaceResult result = split_interface(input, top_layer(3, 3, 2), {diagonal, "interface"});
+    InterfaceOptions options{diagonal, "interface"};
+    options.stack_cells = 1;  // the outer layer alone (stacks: ThinOuterCells... below)
+    const InterfaceResult result = split_interface(input, top_layer(3, 3, 2), options);
     EXPECT_EQ(result.mesh.cell_count(CellType::hexahedron), 9u) << "the inner layer keeps its hexahedra";
     EXPECT_EQ(result.mesh.cell_count(CellType::pyramid), 45u);
     EXPECT_EQ(result.mesh.cell_count(CellType::tetrahedron), 18u);
@@ -120,6 +123,47 @@ TEST(InterfaceSplit, BlockOfThreeByThreeByTwoStaysConformingWithTheInnerLayer) {
     EXPECT_EQ(result.mesh.face_count(FaceType::quad), 24u + 9u);
     expect_sound_split(input, result);
   }
+}
+
+// Cells 20 times wider than high, leaning a little: split alone, each outer quad's
+// two tetrahedra have their apex half a cell under the quad's diagonal and are slivers.
+// Split with the cells under them, as stacks about their middle, they are not, and the
+// stacks' side quads keep the columns conforming.
+double largest_tetrahedron_dihedral(const MixedMesh& mesh) {
+  double largest = 0.0;
+  for (std::size_t cell = 0; cell < mesh.cell_count(CellType::tetrahedron); ++cell) {
+    const Index* nodes = mesh.cell(CellType::tetrahedron, cell);
+    auto at = [&](int k) -> const Vector3& { return mesh.points[static_cast<std::size_t>(nodes[k])]; };
+    largest = std::max(largest, largest_dihedral_degrees(at(0), at(1), at(2), at(3)));
+  }
+  return largest;
+}
+
+TEST(InterfaceSplit, ThinOuterCellsAreSplitWithTheCellsUnderThem) {
+  const MixedMesh input = hexahedron_block(3, 3, 12, [](const Vector3& p) {
+    return Vector3(p.x() + 0.02 * p.z() + 0.01 * p.y() * p.y(), 0.8 * p.y() + 0.01 * p.z(), 0.05 * p.z());
+  });
+  InterfaceOptions alone;
+  alone.stack_cells = 1;
+  const InterfaceResult single = split_interface(input, top_layer(3, 3, 12), alone);
+  EXPECT_EQ(single.stacks, 0u);
+  EXPECT_GT(largest_tetrahedron_dihedral(single.mesh), 170.0);
+
+  const InterfaceResult stacked = split_interface(input, top_layer(3, 3, 12));
+  EXPECT_EQ(stacked.stacks, 9u);
+  EXPECT_GT(stacked.stacked_cells, 2u * 9u);
+  EXPECT_LE(largest_tetrahedron_dihedral(stacked.mesh), InterfaceOptions().stack_dihedral);
+  EXPECT_EQ(stacked.mesh.cell_count(CellType::hexahedron) + stacked.stacked_cells, 3u * 3u * 12u);
+  EXPECT_EQ(stacked.mesh.points.size(), input.points.size() + 9) << "one split point per column";
+  EXPECT_EQ(stacked.hull.size(), 18u);
+  expect_sound_split(input, stacked);
+
+  // A stack never takes another outer cell's column, nor goes below the block.
+  InterfaceOptions deep;
+  deep.stack_dihedral = 0.0;
+  const InterfaceResult deepest = split_interface(input, top_layer(3, 3, 12), deep);
+  EXPECT_LE(deepest.stacked_cells, 3u * 3u * 12u);
+  expect_sound_split(input, deepest);
 }
 
 TEST(InterfaceSplit, DiagonalRulesAreDeterministic) {

@@ -89,6 +89,12 @@ struct InterfaceOptions {
   // A cap on a twisted quad that is inverted at cap_height is raised (doubling) up to
   // this multiple of the quad's longest diagonal.
   double cap_height_limit = 0.5;
+  // An outer hexahedron whose split leaves a tetrahedron with a dihedral angle above
+  // stack_dihedral degrees (a cell much thinner than wide) is split together with up to
+  // stack_cells - 1 hexahedra under it, as one stack about its middle (see
+  // docs/interface.md); stack_cells 1 splits the outermost cells alone.
+  double stack_dihedral = 160.0;
+  int stack_cells = 16;
 };
 
 // An outer cell that can neither be split about its centre nor capped (a layer cell
@@ -107,6 +113,8 @@ struct InterfaceResult {
   std::size_t tetrahedra = 0;
   std::size_t capped_cells = 0;  // kept whole with pyramids outside (see InterfaceOptions)
   std::size_t lowered_caps = 0;  // marked caps brought down where they crossed the hull
+  std::size_t stacks = 0;        // outer hexahedra split with cells under them
+  std::size_t stacked_cells = 0;  // the hexahedra those stacks hold
 };
 
 // Throws mixmesh::Error for a cell index out of range, an outer face number out of
