@@ -323,7 +323,7 @@ BoundaryMotion boundary_motion(const MixedMesh& mesh, const MixedMesh& reference
         before.push_back(mesh.points[at] - mesh.points[node]);
         after.push_back(target[at] - target[node]);
       }
-      boundary.rotation[node] = detail::fit_rotation(before, after, planar, true);
+      boundary.rotation[node] = detail::fit_rotation(before, after, planar);
     }
   }
   return boundary;

@@ -414,6 +414,11 @@ namespace {
 // difference tilted the first cells by up to 85 degrees and folded 1,642 of them. Above
 // the layers, where the cells are as large as the faces, the same difference is a small
 // strain, and it fades out one face size above the wall.
+// Whether `node` lies on a wall's line (its base is prescribed).
+bool on_wall_line(const LayerLines& lines, const BoundaryMotion& boundary, std::size_t node) {
+  return lines.base[node] >= 0 && boundary.roles[static_cast<std::size_t>(lines.base[node])] == NodeRole::prescribed;
+}
+
 void carry_top_offsets(const LayerLines& lines, const BoundaryMotion& boundary,
                        const std::vector<Vector3>& original, const std::vector<Vector3>& carried,
                        std::vector<Vector3>& moved) {
@@ -429,10 +434,10 @@ void carry_top_offsets(const LayerLines& lines, const BoundaryMotion& boundary,
   std::vector<char> seen(point_count, 0);
   std::vector<Top> tops;
   for (std::size_t node = 0; node < point_count; ++node) {
-    if (lines.base[node] < 0) continue;
+    if (!on_wall_line(lines, boundary, node)) continue;
     const std::size_t base = static_cast<std::size_t>(lines.base[node]);
     const std::size_t top = static_cast<std::size_t>(lines.top[node]);
-    if (seen[top] || boundary.roles[base] != NodeRole::prescribed) continue;
+    if (seen[top]) continue;
     seen[top] = 1;
     Top entry;
     entry.position = original[top];
@@ -459,10 +464,7 @@ void carry_top_offsets(const LayerLines& lines, const BoundaryMotion& boundary,
   const Tree tree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(10));
   constexpr std::size_t nearest_count = 8;
   parallel_items(point_count, [&](std::size_t node) {
-    if (boundary.roles[node] == NodeRole::prescribed) return;
-    if (lines.base[node] >= 0 &&
-        boundary.roles[static_cast<std::size_t>(lines.base[node])] == NodeRole::prescribed)
-      return;  // a wall's line
+    if (boundary.roles[node] == NodeRole::prescribed || on_wall_line(lines, boundary, node)) return;
     std::array<Index, nearest_count> found{};
     std::array<double, nearest_count> squared{};
     const std::size_t count = tree.knnSearch(original[node].data(), std::min(nearest_count, tops.size()),
@@ -502,10 +504,7 @@ void transport_layer_lines(const LayerLines& lines, const BoundaryMotion& bounda
                            const std::vector<Vector3>& original, std::vector<Vector3>& moved) {
   if (lines.line_nodes == 0) return;
   const std::size_t point_count = original.size();
-  auto on_wall = [&](std::size_t node) {
-    return lines.base[node] >= 0 &&
-           boundary.roles[static_cast<std::size_t>(lines.base[node])] == NodeRole::prescribed;
-  };
+  auto on_wall = [&](std::size_t node) { return on_wall_line(lines, boundary, node); };
   // The rotation of the base surface at every base node of `wall` (or of a sheet),
   // fitted to its star in `field`.
   std::vector<char> is_base(point_count, 0);
@@ -522,7 +521,7 @@ void transport_layer_lines(const LayerLines& lines, const BoundaryMotion& bounda
         before.push_back(original[other] - original[node]);
         after.push_back(field[other] - field[node]);
       }
-      turn[node] = rotation_matrix(fit_rotation(before, after, false, true));
+      turn[node] = rotation_matrix(fit_rotation(before, after, false));
     });
   };
 
@@ -546,9 +545,9 @@ void transport_layer_lines(const LayerLines& lines, const BoundaryMotion& bounda
   // shortest arc that takes the fitted chord (base to top) to the method's chord: the
   // line's own direction from the method, the fit's twist about it; its top keeps the
   // method's position and the difference is spread along the line by arc length. A
-  // rigid motion is kept exactly (the fitted chord is then the moved chord).
-  const std::vector<Vector3> sheet_field = moved;
-  fit_turns(false, sheet_field);
+  // rigid motion is kept exactly (the fitted chord is then the moved chord). The pass
+  // reads bases, tops and stars only and writes neither, so it reads `moved` in place.
+  fit_turns(false, moved);
   parallel_items(point_count, [&](std::size_t node) {
     if (lines.base[node] < 0 || on_wall(node) || boundary.roles[node] == NodeRole::prescribed) return;
     const std::size_t base = static_cast<std::size_t>(lines.base[node]);
@@ -556,15 +555,15 @@ void transport_layer_lines(const LayerLines& lines, const BoundaryMotion& bounda
     if (top == node) return;
     Eigen::Matrix3d line_turn = turn[base];
     const Vector3 fitted_chord = turn[base] * (original[top] - original[base]);
-    const Vector3 moved_chord = sheet_field[top] - sheet_field[base];
+    const Vector3 moved_chord = moved[top] - moved[base];
     if (fitted_chord.norm() > 0.0 && moved_chord.norm() > 0.0)
       line_turn =
           Eigen::Quaterniond::FromTwoVectors(fitted_chord, moved_chord).toRotationMatrix() * turn[base];
     auto rigid = [&](std::size_t point) -> Vector3 {
-      return sheet_field[base] + line_turn * (original[point] - original[base]);
+      return moved[base] + line_turn * (original[point] - original[base]);
     };
     const double share = lines.height[node] / lines.height[top];
-    moved[node] = rigid(node) + share * (sheet_field[top] - rigid(top));
+    moved[node] = rigid(node) + share * (moved[top] - rigid(top));
   });
 }
 

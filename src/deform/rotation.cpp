@@ -47,15 +47,14 @@ double offset_weight(const Vector3& offset) {
 
 }  // namespace
 
-Vector3 fit_rotation(const std::vector<Vector3>& before, const std::vector<Vector3>& after, bool planar,
-                     bool by_direction) {
+Vector3 fit_rotation(const std::vector<Vector3>& before, const std::vector<Vector3>& after, bool planar) {
   if (before.size() < 2 || before.size() != after.size()) return Vector3::Zero();
   if (planar) {
     // Angle maximising Σ cos(θ) (a·b) + sin(θ) (a × b)_z.
     double along = 0.0;
     double across = 0.0;
     for (std::size_t item = 0; item < before.size(); ++item) {
-      const double weight = by_direction ? offset_weight(before[item]) : 1.0;
+      const double weight = offset_weight(before[item]);
       along += weight * (before[item].x() * after[item].x() + before[item].y() * after[item].y());
       across += weight * (before[item].x() * after[item].y() - before[item].y() * after[item].x());
     }
@@ -64,7 +63,7 @@ Vector3 fit_rotation(const std::vector<Vector3>& before, const std::vector<Vecto
   }
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
   for (std::size_t item = 0; item < before.size(); ++item)
-    covariance += (by_direction ? offset_weight(before[item]) : 1.0) * after[item] * before[item].transpose();
+    covariance += offset_weight(before[item]) * after[item] * before[item].transpose();
   const Eigen::JacobiSVD<Eigen::Matrix3d> svd(covariance, Eigen::ComputeFullU | Eigen::ComputeFullV);
   Eigen::Matrix3d correction = Eigen::Matrix3d::Identity();
   if ((svd.matrixU() * svd.matrixV().transpose()).determinant() < 0.0) correction(2, 2) = -1.0;

@@ -18,12 +18,10 @@ Eigen::Matrix3d rotation_matrix(const Vector3& rotation);
 // Rotation vector of a rotation matrix.
 Vector3 rotation_vector(const Eigen::Matrix3d& rotation);
 
-// Least-squares rotation taking the offsets `before` to `after` (Kabsch); when
-// `by_direction`, each offset weighted by 1/|before|² (by its direction, not its length;
-// rotation.cpp says why); when `planar`, the rotation about z only. Zero for fewer than
-// two usable offsets.
-Vector3 fit_rotation(const std::vector<Vector3>& before, const std::vector<Vector3>& after, bool planar,
-                     bool by_direction = false);
+// Least-squares rotation taking the offsets `before` to `after` (Kabsch), each offset
+// weighted by 1/|before|² (by its direction, not its length; rotation.cpp says why);
+// when `planar`, the rotation about z only. Zero for fewer than two usable offsets.
+Vector3 fit_rotation(const std::vector<Vector3>& before, const std::vector<Vector3>& after, bool planar);
 
 // Moves sliding nodes of `moved` back into their symmetry plane through their position
 // in `original` (removes the normal part of their displacement).
