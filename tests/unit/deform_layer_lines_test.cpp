@@ -163,6 +163,15 @@ TEST(DeformLayerLines, StacksOfAWallAndOfASheetMoveWithTheirBase) {
           } else {
             EXPECT_LE(off, method.lift.norm() * (1.0 + 1e-9))
                 << "side " << side << " layer " << layer << " i " << i;
+            // Straight before, straight after: the node stays on the chord from its
+            // moved base to its moved top, at the same fraction of the line's length.
+            const std::size_t base = static_cast<std::size_t>(plate.at(side, 0, i, j));
+            const std::size_t top = static_cast<std::size_t>(plate.at(side, PlateWithSheet::layers, i, j));
+            const double fraction = (points[node] - points[base]).norm() / (points[top] - points[base]).norm();
+            const Vector3& moved_base = result.mesh.points[base];
+            const Vector3& moved_top = result.mesh.points[top];
+            EXPECT_LT((result.mesh.points[node] - (moved_base + fraction * (moved_top - moved_base))).norm(), 1e-12)
+                << "side " << side << " layer " << layer << " i " << i;
           }
         }
   const Vector3 lift_direction = method.lift.normalized();
