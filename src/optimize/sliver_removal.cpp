@@ -435,13 +435,20 @@ class SliverRemoval {
   // hull triangles of a shallow concave fold, a cap's side and its neighbour's) has no
   // flip out; a new point above it does. Trial points: the sliver's circumcentre and
   // points over each of its crossable faces, each with its star-shaped Bowyer-Watson
-  // cavity (grown until star-shaped from the point) coned from it.
+  // cavity (grown until star-shaped from the point) coned from it. A sliver much longer
+  // than it is short (three nearly collinear hull nodes of one station, 4 cm apart, and
+  // a point of the next, 2 m away) also gets points at its own short scale over the
+  // middles of each face and of its edges, on both sides: a point a tenth of its longest
+  // edge up lands five cells away and leaves the flat tetrahedra on either side of the
+  // three nodes' triangle.
   void insert_a_point(int t) {
     const Tetrahedron nodes = complex_.nodes(t);
     const Vector3 &a = point(nodes[0]), &b = point(nodes[1]), &c = point(nodes[2]), &d = point(nodes[3]);
-    const double longest =
-        std::sqrt(std::max({(b - a).squaredNorm(), (c - a).squaredNorm(), (d - a).squaredNorm(),
-                            (c - b).squaredNorm(), (d - b).squaredNorm(), (d - c).squaredNorm()}));
+    const std::array<double, 6> lengths = {(b - a).squaredNorm(), (c - a).squaredNorm(),
+                                           (d - a).squaredNorm(), (c - b).squaredNorm(),
+                                           (d - b).squaredNorm(), (d - c).squaredNorm()};
+    const double longest = std::sqrt(*std::max_element(lengths.begin(), lengths.end()));
+    const double shortest = std::sqrt(*std::min_element(lengths.begin(), lengths.end()));
     const Vector3 centroid = 0.25 * a + 0.25 * b + 0.25 * c + 0.25 * d;
     trials_.clear();
     if (const auto centre = tetrahedron_circumcentre(a, b, c, d);
@@ -456,6 +463,13 @@ class SliverRemoval {
       normal.normalize();
       if (normal.dot(point(nodes[static_cast<std::size_t>(vertex)]) - middle) > 0.0) normal = -normal;
       for (double height : {0.1, 0.25, 0.5}) trials_.push_back(middle + height * longest * normal);
+      // The short scale's heights (up to twice the shortest edge) only where they lie
+      // under the lowest of the long scale's.
+      if (2.0 * shortest < 0.1 * longest)
+        for (const Vector3& base : std::array<Vector3, 4>{middle, 0.5 * (point(face[0]) + point(face[1])),
+                                                          0.5 * (point(face[1]) + point(face[2])),
+                                                          0.5 * (point(face[2]) + point(face[0]))})
+          for (double height : {-1.0, 0.5, 1.0, 2.0}) trials_.push_back(base + height * shortest * normal);
     }
     for (const Vector3& trial : trials_) try_insertion(t, trial);
   }

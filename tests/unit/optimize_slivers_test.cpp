@@ -62,6 +62,25 @@ double largest_dihedral(const MixedMesh& mesh, std::size_t& above_160) {
   return largest;
 }
 
+// The largest dihedral angle of the tetrahedra whose centroid lies within `radius` of
+// the origin, and how many of them are above 170 degrees.
+double largest_dihedral_within(const MixedMesh& mesh, double radius, std::size_t& above_170) {
+  double largest = 0.0;
+  above_170 = 0;
+  for (std::size_t t = 0; t < mesh.cell_count(CellType::tetrahedron); ++t) {
+    const Index* n = mesh.cell(CellType::tetrahedron, t);
+    const Vector3 &a = mesh.points[static_cast<std::size_t>(n[0])],
+                  &b = mesh.points[static_cast<std::size_t>(n[1])],
+                  &c = mesh.points[static_cast<std::size_t>(n[2])],
+                  &d = mesh.points[static_cast<std::size_t>(n[3])];
+    if ((0.25 * (a + b + c + d)).norm() > radius) continue;
+    const double angle = largest_dihedral_degrees(a, b, c, d);
+    largest = std::max(largest, angle);
+    above_170 += angle > 170.0 ? 1 : 0;
+  }
+  return largest;
+}
+
 double total_volume(const MixedMesh& mesh) {
   double volume = 0.0;
   for (std::size_t t = 0; t < mesh.cell_count(CellType::tetrahedron); ++t)
@@ -185,11 +204,9 @@ TEST(SliverRemoval, APointOnAFlatBoundaryMovesWithinItsPlane) {
   EXPECT_TRUE(match_faces(mesh).conforming());
 }
 
-// The tetrahedra of tests/unit/data/sliver_patch_behind_trailing_edge.txt, its outer
-// faces tagged "wall".
-MixedMesh sliver_patch() {
-  std::ifstream in(std::string(MIXMESH_SOURCE_DIR) +
-                   "/tests/unit/data/sliver_patch_behind_trailing_edge.txt");
+// The tetrahedra of tests/unit/data/NAME.txt, its outer faces tagged "wall".
+MixedMesh sliver_patch(const std::string& name = "sliver_patch_behind_trailing_edge") {
+  std::ifstream in(std::string(MIXMESH_SOURCE_DIR) + "/tests/unit/data/" + name + ".txt");
   std::string line;
   while (in.peek() == '#') std::getline(in, line);
   MixedMesh mesh;
@@ -243,6 +260,34 @@ TEST(SliverRemoval, SliversOnTheHullBehindATrailingEdgeNeedNewPoints) {
   EXPECT_NEAR(total_volume(mesh) / volume, 1.0, 1e-9);
   EXPECT_TRUE(match_faces(mesh).conforming());
   EXPECT_EQ(mesh.face_count(), sliver_patch().face_count());
+}
+
+TEST(SliverRemoval, SliversOnThreeNearlyCollinearHullNodesNeedAPointAtTheirOwnScale) {
+  // Over a large swept wing the hull's quads are 2 m along the span and 4 cm along the
+  // chord: three consecutive hull nodes of one station lie nearly on a line, and
+  // TetGen's tetrahedra on their triangle (with a point of the next station) are flat
+  // on both sides of it. A point a chord-wise cell above them mends them; one a tenth
+  // of the sliver's longest edge up (20 cm, five cells) does not. The patch's cut faces
+  // are walls, so only the slivers round its centre (the middle node) are judged.
+  MixedMesh mesh = sliver_patch("sliver_patch_leading_edge_station");
+  std::size_t near = 0;
+  const double before = largest_dihedral_within(mesh, 1.0, near);
+  ASSERT_GT(before, 179.0);
+  ASSERT_GT(near, 10u);
+  const std::size_t near_before = near;
+  const double volume = total_volume(mesh);
+  const SliverReport report = remove_slivers(mesh, SliverOptions{});
+  const double after = largest_dihedral_within(mesh, 1.0, near);
+  std::printf(
+      "within 1 m of the middle node: largest dihedral %.2f -> %.2f deg, above 170 deg %zu -> %zu, "
+      "%zu points inserted\n",
+      before, after, near_before, near, report.point_insertions);
+  EXPECT_GE(report.point_insertions, 1u);
+  EXPECT_LT(after, 170.0);
+  EXPECT_EQ(near, 0u);
+  EXPECT_NEAR(total_volume(mesh) / volume, 1.0, 1e-9);
+  EXPECT_TRUE(match_faces(mesh).conforming());
+  EXPECT_EQ(mesh.face_count(), sliver_patch("sliver_patch_leading_edge_station").face_count());
 }
 
 TEST(SliverRemoval, BadOptionsAreRejected) {
