@@ -463,16 +463,17 @@ class SliverRemoval {
       normal.normalize();
       if (normal.dot(point(nodes[static_cast<std::size_t>(vertex)]) - middle) > 0.0) normal = -normal;
       for (double height : {0.1, 0.25, 0.5}) trials_.push_back(middle + height * longest * normal);
-      // The short scale's heights: the shortest edge below the face, and half of it
-      // doubled up to the lowest of the long scale's.
+      // The short scale's heights, on both sides of the face (which side is the sliver's
+      // is not clear when it is flat): half the shortest edge, doubled up to the lowest
+      // of the long scale's.
       if (2.0 * shortest < 0.1 * longest)
         for (const Vector3& base : std::array<Vector3, 4>{middle, 0.5 * (point(face[0]) + point(face[1])),
                                                           0.5 * (point(face[1]) + point(face[2])),
-                                                          0.5 * (point(face[2]) + point(face[0]))}) {
-          trials_.push_back(base - shortest * normal);
-          for (double height = 0.5 * shortest; height < 0.1 * longest; height *= 2.0)
+                                                          0.5 * (point(face[2]) + point(face[0]))})
+          for (double height = 0.5 * shortest; height < 0.1 * longest; height *= 2.0) {
             trials_.push_back(base + height * normal);
-        }
+            trials_.push_back(base - height * normal);
+          }
     }
     for (const Vector3& trial : trials_) try_insertion(t, trial);
   }
