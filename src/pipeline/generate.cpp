@@ -268,6 +268,15 @@ std::optional<FarFieldResult> farfield_stage(const SurfaceMesh& surface, const G
         crossings = previous_crossings;
         return std::nullopt;
       }
+      // TetGen 1.5 can abort while it recovers a boundary edge on the anisotropic
+      // input (an assertion in recoveredgebyflips on random wing 57 of seed 41, whose
+      // isotropic far field builds): isotropic sizing then gives a mesh rather than none.
+      if (tetgen_failed && farfield_options.sizing == FarFieldSizing::anisotropic) {
+        log.warning(message + "; building the far field with isotropic sizing instead");
+        FarFieldOptions isotropic = farfield_options;
+        isotropic.sizing = FarFieldSizing::isotropic;
+        return farfield(attempts.farfield_input, isotropic, log);
+      }
       // A hull the far field cannot fill comes from the layers: say where they stopped
       // and what to change, not only what TetGen found.
       if (message.find("intersect") == std::string::npos && message.find("hull edge") == std::string::npos &&

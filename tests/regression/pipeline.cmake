@@ -127,6 +127,19 @@ add_test(NAME pipeline_check_mesh_unsplittable_cell
 set_tests_properties(pipeline_check_mesh_unsplittable_cell PROPERTIES LABELS regression
                      FIXTURES_REQUIRED unsplittable_cell_mesh PASS_REGULAR_EXPRESSION "\nVALID")
 
+# A wing whose anisotropic far field makes TetGen abort (tests/regression/pipeline/
+# tetgen_abort_wing.toml): generate falls back to isotropic sizing, and the mesh is valid.
+add_test(NAME pipeline_tetgen_abort_falls_back_to_isotropic
+         COMMAND mixmesh-cli generate ${CMAKE_CURRENT_LIST_DIR}/pipeline/tetgen_abort_wing.toml
+                 --output-dir ${pipeline_folder}/tetgen_abort)
+set_tests_properties(pipeline_tetgen_abort_falls_back_to_isotropic PROPERTIES LABELS regression
+                     FIXTURES_SETUP tetgen_abort_mesh
+                     PASS_REGULAR_EXPRESSION "TetGen crashed [^\n]*; building the far field with isotropic sizing instead.*points [0-9]+  surface elements")
+add_test(NAME pipeline_check_mesh_tetgen_abort
+         COMMAND ${MIXMESH_PYTHON} ${MIXMESH_CHECK_MESH} ${pipeline_folder}/tetgen_abort/tetgen_abort_wing.vtu -q)
+set_tests_properties(pipeline_check_mesh_tetgen_abort PROPERTIES LABELS regression
+                     FIXTURES_REQUIRED tetgen_abort_mesh PASS_REGULAR_EXPRESSION "\nVALID")
+
 # The default ONERA M6 mesh (cases/onera_m6.toml, anisotropic far field) keeps its
 # slivers down: the largest dihedral angle under 178.5 deg and under 0.5 % of the
 # tetrahedra above the sliver pass's 160 deg (177.7 deg and 0.30 % when this test was
