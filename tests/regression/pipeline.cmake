@@ -112,33 +112,33 @@ add_test(NAME pipeline_report_counts_hull_retries
 set_tests_properties(pipeline_report_counts_hull_retries PROPERTIES LABELS regression
                      FIXTURES_REQUIRED hull_crossing_mesh PASS_REGULAR_EXPRESSION "\nhull_retries = 2\n")
 
+# A wing of tests/regression/pipeline/CONFIG.toml generated into FOLDER (test GENERATE_TEST,
+# passing on EXPECTED) and its mesh judged VALID by the independent checker (CHECK_TEST).
+function(pipeline_wing_case generate_test check_test config folder expected)
+  add_test(NAME ${generate_test}
+           COMMAND mixmesh-cli generate ${CMAKE_CURRENT_LIST_DIR}/pipeline/${config}.toml
+                   --output-dir ${pipeline_folder}/${folder})
+  set_tests_properties(${generate_test} PROPERTIES LABELS regression FIXTURES_SETUP ${folder}_mesh
+                       PASS_REGULAR_EXPRESSION "${expected}")
+  add_test(NAME ${check_test}
+           COMMAND ${MIXMESH_PYTHON} ${MIXMESH_CHECK_MESH} ${pipeline_folder}/${folder}/${config}.vtu -q)
+  set_tests_properties(${check_test} PROPERTIES LABELS regression FIXTURES_REQUIRED ${folder}_mesh
+                       PASS_REGULAR_EXPRESSION "\nVALID")
+endfunction()
+
 # An outer cell that can be neither split nor capped (twisted more than it is thick, at
 # a tip's trailing edge where the growth stopped early) is a place to lower the layers,
 # like a hull crossing: the wing meshes on the first retry (it failed with the
 # interface's error before).
-add_test(NAME pipeline_unsplittable_cell_lowers_the_layers
-         COMMAND mixmesh-cli generate ${CMAKE_CURRENT_LIST_DIR}/pipeline/unsplittable_tip_cell_wing.toml
-                 --output-dir ${pipeline_folder}/unsplittable_cell)
-set_tests_properties(pipeline_unsplittable_cell_lowers_the_layers PROPERTIES LABELS regression
-                     FIXTURES_SETUP unsplittable_cell_mesh
-                     PASS_REGULAR_EXPRESSION "interface: a cell neither split nor capped; [^\n]* stop by layer 16 \\(retry 1 of 3\\).*points [0-9]+  surface elements")
-add_test(NAME pipeline_check_mesh_unsplittable_cell
-         COMMAND ${MIXMESH_PYTHON} ${MIXMESH_CHECK_MESH} ${pipeline_folder}/unsplittable_cell/unsplittable_tip_cell_wing.vtu -q)
-set_tests_properties(pipeline_check_mesh_unsplittable_cell PROPERTIES LABELS regression
-                     FIXTURES_REQUIRED unsplittable_cell_mesh PASS_REGULAR_EXPRESSION "\nVALID")
+pipeline_wing_case(pipeline_unsplittable_cell_lowers_the_layers pipeline_check_mesh_unsplittable_cell
+                   unsplittable_tip_cell_wing unsplittable_cell
+                   "interface: a cell neither split nor capped; [^\n]* stop by layer 16 \\(retry 1 of 3\\).*points [0-9]+  surface elements")
 
 # A wing whose anisotropic far field makes TetGen abort (tests/regression/pipeline/
 # tetgen_abort_wing.toml): generate falls back to isotropic sizing, and the mesh is valid.
-add_test(NAME pipeline_tetgen_abort_falls_back_to_isotropic
-         COMMAND mixmesh-cli generate ${CMAKE_CURRENT_LIST_DIR}/pipeline/tetgen_abort_wing.toml
-                 --output-dir ${pipeline_folder}/tetgen_abort)
-set_tests_properties(pipeline_tetgen_abort_falls_back_to_isotropic PROPERTIES LABELS regression
-                     FIXTURES_SETUP tetgen_abort_mesh
-                     PASS_REGULAR_EXPRESSION "TetGen crashed [^\n]*; building the far field with isotropic sizing instead.*points [0-9]+  surface elements")
-add_test(NAME pipeline_check_mesh_tetgen_abort
-         COMMAND ${MIXMESH_PYTHON} ${MIXMESH_CHECK_MESH} ${pipeline_folder}/tetgen_abort/tetgen_abort_wing.vtu -q)
-set_tests_properties(pipeline_check_mesh_tetgen_abort PROPERTIES LABELS regression
-                     FIXTURES_REQUIRED tetgen_abort_mesh PASS_REGULAR_EXPRESSION "\nVALID")
+pipeline_wing_case(pipeline_tetgen_abort_falls_back_to_isotropic pipeline_check_mesh_tetgen_abort
+                   tetgen_abort_wing tetgen_abort
+                   "TetGen crashed [^\n]*; building the far field with isotropic sizing instead.*points [0-9]+  surface elements")
 
 # The default ONERA M6 mesh (cases/onera_m6.toml, anisotropic far field) keeps its
 # slivers down: the largest dihedral angle under 178.5 deg and under 0.5 % of the
