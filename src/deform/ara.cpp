@@ -15,6 +15,7 @@
 
 #include "deform/ara_geometry.hpp"
 #include "deform/ara_smoothing.hpp"
+#include "deform/ara_stages.hpp"
 #include "deform/dual_mesh.hpp"
 #include "deform/rotation.hpp"
 #include "deform/wall_faces.hpp"
@@ -26,33 +27,6 @@ namespace {
 
 using detail::DualMesh;
 using detail::WallFaces;
-
-// Motion of a wall face: its centre's displacement and its rotation (the centre itself is
-// AraGeometry::wall_centres).
-struct FaceMotion {
-  Vector3 displacement;
-  Vector3 rotation;
-};
-
-std::vector<FaceMotion> wall_motion(const DualMesh& dual, const WallFaces& walls,
-                                    const BoundaryMotion& boundary) {
-  std::vector<FaceMotion> motion(walls.faces.size());
-  for (std::size_t wall = 0; wall < walls.faces.size(); ++wall) {
-    const std::size_t face = static_cast<std::size_t>(walls.faces[wall]);
-    const Index* nodes = dual.boundary_nodes(face);
-    const int count = dual.face_size(face);
-    FaceMotion& entry = motion[wall];
-    entry = {Vector3::Zero(), Vector3::Zero()};
-    for (int local = 0; local < count; ++local) {
-      const std::size_t node = static_cast<std::size_t>(nodes[local]);
-      entry.displacement += boundary.displacement[node];
-      entry.rotation += boundary.rotation[node];
-    }
-    entry.displacement /= count;  // exact for rigid motion: the centre is affine in the nodes
-    entry.rotation /= count;
-  }
-  return motion;
-}
 
 // Pseudo-Laplacian weights of the cells around one node (eq. 24–26):
 // ω_j = 1 + λᵀ(x_j − x_i), λ = −I⁻¹ R, R = Σ (x_j − x_i), I = Σ (x_j − x_i)(x_j − x_i)ᵀ;
@@ -159,14 +133,7 @@ std::shared_ptr<detail::AraGeometry> prepare_geometry(const MixedMesh& mesh,
 
 }  // namespace
 
-std::vector<Vector3> AraMethod::move(const MixedMesh& mesh, const BoundaryMotion& boundary, const Log& log) {
-  report_ = {};
-  Stopwatch total_clock;
-  Stopwatch stage_clock;
-  if (boundary.roles.size() != mesh.points.size() || boundary.displacement.size() != mesh.points.size() ||
-      boundary.rotation.size() != mesh.points.size())
-    throw Error("ara: boundary motion does not match the mesh (" + std::to_string(boundary.roles.size()) +
-                " entries for " + std::to_string(mesh.points.size()) + " points)");
+bool AraMethod::prepare(const MixedMesh& mesh, const BoundaryMotion& boundary, const Log& log) {
   const std::uint64_t connectivity = detail::connectivity_hash(mesh);
   const std::uint64_t point_bits = detail::points_hash(mesh.points);
   report_.geometry_cached = geometry_ && geometry_->connectivity == connectivity &&
@@ -175,35 +142,29 @@ std::vector<Vector3> AraMethod::move(const MixedMesh& mesh, const BoundaryMotion
   // A cache file of nearest faces only (written with cache_geometry off, or by an older
   // mixmesh) gets the geometry added once it is built, so the next run reads it.
   bool add_geometry_to_file = false;
-  if (!report_.geometry_cached) {
-    geometry_.reset();  // release the old one before building the new one
-    if (options_.cache_geometry && !options_.cache_file.empty() &&
-        std::filesystem::exists(options_.cache_file)) {
-      detail::StoredGeometry stored =
-          detail::read_ara_geometry(options_.cache_file, connectivity, point_bits, boundary.marker_roles);
-      geometry_ = std::move(stored.geometry);
-      report_.geometry_from_file = geometry_ != nullptr;
-      add_geometry_to_file = stored.faces_only;
-      log.detail("ara: geometry " + (geometry_ ? "read from " + options_.cache_file.string()
-                                               : "rebuilt (" + stored.why_not + ")"));
-    }
-    if (!geometry_)
-      geometry_ = prepare_geometry(mesh, boundary.marker_roles, connectivity, point_bits, offered_dual_);
+  if (report_.geometry_cached) return add_geometry_to_file;
+  geometry_.reset();  // release the old one before building the new one
+  if (options_.cache_geometry && !options_.cache_file.empty() &&
+      std::filesystem::exists(options_.cache_file)) {
+    detail::StoredGeometry stored =
+        detail::read_ara_geometry(options_.cache_file, connectivity, point_bits, boundary.marker_roles);
+    geometry_ = std::move(stored.geometry);
+    report_.geometry_from_file = geometry_ != nullptr;
+    add_geometry_to_file = stored.faces_only;
+    log.detail("ara: geometry " + (geometry_ ? "read from " + options_.cache_file.string()
+                                             : "rebuilt (" + stored.why_not + ")"));
   }
-  const detail::AraGeometry& geometry = *geometry_;
-  const DualMesh& dual = geometry.dual;
-  const WallFaces& walls = geometry.walls;
-  const std::vector<Vector3>& centres = geometry.centres;
-  const std::size_t cells = dual.cell_count();
-  const std::vector<Vector3>& points = mesh.points;
-  report_.setup_seconds = stage_clock.seconds();
+  if (!geometry_)
+    geometry_ = prepare_geometry(mesh, boundary.marker_roles, connectivity, point_bits, offered_dual_);
+  return add_geometry_to_file;
+}
 
-  // 1. Distance metrics: nearest faces from memory or the cache file when they were found
-  // on a mesh with this connectivity and these wall faces.
-  stage_clock = Stopwatch();
+void AraMethod::find_nearest(const std::vector<Vector3>& points, bool add_geometry_to_file, const Log& log) {
+  const detail::AraGeometry& geometry = *geometry_;
+  const std::size_t cells = geometry.dual.cell_count();
   auto fits = [&](const NearestFaces& nearest) {
     return nearest.mesh_hash == geometry.nearest_key && nearest.point_count == points.size() &&
-           nearest.cell_count == cells && nearest.wall_face_count == walls.faces.size() &&
+           nearest.cell_count == cells && nearest.wall_face_count == geometry.walls.faces.size() &&
            nearest.faces.size() == cells;
   };
   const bool from_file =
@@ -215,7 +176,7 @@ std::vector<Vector3> AraMethod::move(const MixedMesh& mesh, const BoundaryMotion
       message << options_.cache_file.string() << ": nearest-face cache made for another mesh ("
               << stored.point_count << " points, " << stored.cell_count << " cells, "
               << stored.wall_face_count << " wall faces, hash " << std::hex << stored.mesh_hash << std::dec
-              << "; this mesh has " << points.size() << ", " << cells << ", " << walls.faces.size()
+              << "; this mesh has " << points.size() << ", " << cells << ", " << geometry.walls.faces.size()
               << ", hash " << std::hex << geometry.nearest_key << "); delete it to search again";
       throw Error(message.str());
     }
@@ -233,232 +194,90 @@ std::vector<Vector3> AraMethod::move(const MixedMesh& mesh, const BoundaryMotion
     }
   }
   report_.cache_used = fits(nearest_);
-  if (!report_.cache_used) {
-    nearest_ = detail::find_nearest_faces(dual, walls, centres, points, options_.candidates);
-    nearest_.point_count = points.size();
-    nearest_.mesh_hash = geometry.nearest_key;
-    if (!options_.cache_file.empty()) {
-      if (options_.cache_geometry)
-        detail::write_ara_cache(nearest_, geometry, options_.cache_file);
-      else
-        write_nearest_faces(nearest_, options_.cache_file);
-    }
-  }
+  if (report_.cache_used) return;
+  nearest_ = detail::find_nearest_faces(geometry.dual, geometry.walls, geometry.centres, points,
+                                        options_.candidates);
+  nearest_.point_count = points.size();
+  nearest_.mesh_hash = geometry.nearest_key;
+  if (options_.cache_file.empty()) return;
+  if (options_.cache_geometry)
+    detail::write_ara_cache(nearest_, geometry, options_.cache_file);
+  else
+    write_nearest_faces(nearest_, options_.cache_file);
+}
+
+std::vector<Vector3> AraMethod::move(const MixedMesh& mesh, const BoundaryMotion& boundary, const Log& log) {
+  report_ = {};
+  Stopwatch total_clock;
+  Stopwatch stage_clock;
+  if (boundary.roles.size() != mesh.points.size() || boundary.displacement.size() != mesh.points.size() ||
+      boundary.rotation.size() != mesh.points.size())
+    throw Error("ara: boundary motion does not match the mesh (" + std::to_string(boundary.roles.size()) +
+                " entries for " + std::to_string(mesh.points.size()) + " points)");
+  const bool add_geometry_to_file = prepare(mesh, boundary, log);
+  detail::AraGeometry& geometry = *geometry_;
+  const std::vector<Vector3>& points = mesh.points;
+  report_.setup_seconds = stage_clock.seconds();
+
+  // 1. Distance metrics: nearest faces from memory or the cache file when they were found
+  // on a mesh with this connectivity and these wall faces.
+  stage_clock = Stopwatch();
+  find_nearest(points, add_geometry_to_file, log);
   std::vector<double> first_distance;
   std::vector<double> second_distance;
-  detail::nearest_distances(dual, walls, nearest_, centres, points, first_distance, second_distance);
+  detail::nearest_distances(geometry.dual, geometry.walls, nearest_, geometry.centres, points, first_distance,
+                            second_distance);
   report_.distance_seconds = stage_clock.seconds();
 
   // 2. Rigid-body initialisation (eq. 9–11).
   stage_clock = Stopwatch();
-  const std::vector<FaceMotion> faces = wall_motion(dual, walls, boundary);
-  const bool rotate = options_.predictor == Predictor::rotation;
-  std::vector<Vector3> velocity(cells);  // u = x′ − x
-  std::vector<Vector3> spin(cells);      // w, rotation vector of the cell
-  detail::parallel_items(cells, [&](std::size_t cell) {
-    const Vector3& x = centres[cell];
-    Vector3 moved[2] = {x, x};
-    Vector3 rotation[2] = {Vector3::Zero(), Vector3::Zero()};
-    for (int side = 0; side < 2; ++side) {
-      const Index wall = nearest_.faces[cell][static_cast<std::size_t>(side)];
-      if (wall < 0) continue;
-      const FaceMotion& face = faces[static_cast<std::size_t>(wall)];
-      if (rotate) {
-        // x′_n = R_n(x) + Δx_n: rotate about the face centre, then translate with it (eq. 9).
-        rotation[side] = face.rotation;
-        const Vector3& centre = geometry.wall_centres[static_cast<std::size_t>(wall)];
-        moved[side] = detail::rotate(face.rotation, x - centre) + centre + face.displacement;
-      } else {
-        moved[side] = x + face.displacement;  // the original algorithm's eq. 1
-      }
-    }
-    double beta = 1.0;
-    if (nearest_.faces[cell][1] >= 0) {
-      const double d1 = first_distance[cell];
-      const double d2 = second_distance[cell];
-      const double alpha = d1 + d2 > 0.0 ? std::clamp(d2 / (d1 + d2), 0.5, 1.0) : 1.0;  // eq. 2
-      beta = blend(alpha, options_.gamma, options_.blend_form);                         // eq. 11
-    }
-    velocity[cell] = beta * moved[0] + (1.0 - beta) * moved[1] - x;  // eq. 10
-    spin[cell] = beta * rotation[0] + (1.0 - beta) * rotation[1];
-  });
+  const std::vector<detail::FaceMotion> faces = detail::wall_motion(geometry.dual, geometry.walls, boundary);
+  detail::CellMotion motion =
+      detail::predict(geometry, nearest_, faces, first_distance, second_distance, options_);
   report_.predictor_seconds = stage_clock.seconds();
 
   // 3. Smoothing of w and u on the dual mesh (eq. 12–21), the predictor as first guess.
   stage_clock = Stopwatch();
-  std::vector<Vector3> wall_velocity(faces.size());
-  std::vector<Vector3> wall_spin(faces.size(), Vector3::Zero());
-  double largest_spin = 0.0;
-  for (std::size_t wall = 0; wall < faces.size(); ++wall) {
-    wall_velocity[wall] = faces[wall].displacement;
-    if (rotate) wall_spin[wall] = faces[wall].rotation;
-    largest_spin = std::max(largest_spin, wall_spin[wall].norm());
-  }
-  const bool gauss_seidel = options_.solver == Solver::gauss_seidel;
-  if (gauss_seidel && geometry.colours.empty()) geometry_->colours = detail::colour_cells(dual);
-  auto solve = [&](std::vector<Vector3>& values, const std::vector<Vector3>& source, double scale) {
-    detail::SolveSettings settings;
-    settings.relaxation = options_.relaxation;
-    settings.tolerance = options_.tolerance;
-    settings.scale = scale;
-    settings.max_iterations = options_.max_iterations;
-    return gauss_seidel ? detail::gauss_seidel(values, source, geometry.stencil, geometry.colours, settings)
-                        : detail::conjugate_gradient(values, source, geometry.stencil, settings);
-  };
-  // The angular velocity first (eq. 21), so that the velocity smoothing can transport
-  // neighbour velocities rigidly with it.
-  if (rotate) {
-    const detail::SolveResult spun =
-        solve(spin, detail::smoothing_source(geometry.stencil, wall_spin, {}), largest_spin);
-    report_.spin_iterations = spun.iterations;
-  }
-  // R − I of every cell, for the transport and the interpolation to nodes.
-  std::vector<Eigen::Matrix3d> cell_turn;
-  detail::Transport transport;
-  std::vector<Eigen::Matrix3d> wall_turn;
-  if (rotate) {
-    cell_turn.resize(cells);
-    detail::parallel_items(cells, [&](std::size_t cell) {
-      cell_turn[cell] = detail::rotation_matrix(spin[cell]) - Eigen::Matrix3d::Identity();
-    });
-    if (options_.smoothing == Smoothing::rigid_transport) {
-      wall_turn.resize(faces.size());
-      for (std::size_t wall = 0; wall < faces.size(); ++wall)
-        wall_turn[wall] = detail::rotation_matrix(wall_spin[wall]) - Eigen::Matrix3d::Identity();
-      transport = {&cell_turn, &wall_turn, &centres, &geometry.wall_centres};
-    }
-  }
-  const detail::SolveResult smoothed =
-      solve(velocity, detail::smoothing_source(geometry.stencil, wall_velocity, transport),
-            boundary.largest_displacement());
-  report_.smoothing_iterations = smoothed.iterations;
-  report_.smoothing_residual = smoothed.residual;
+  const detail::SmoothingOutcome smoothed = detail::smooth(geometry, faces, boundary, options_, motion);
+  report_.spin_iterations = smoothed.spin_iterations;
+  report_.smoothing_iterations = smoothed.velocity.iterations;
+  report_.smoothing_residual = smoothed.velocity.residual;
   report_.smoothing_seconds = stage_clock.seconds();
 
   // 4. Interpolation to nodes (eq. 22–26).
   stage_clock = Stopwatch();
-  std::vector<Vector3> result(points.size());
-  auto candidate = [&](std::size_t node, std::size_t cell) -> Vector3 {
-    // x′_j = R_j(x_i − c_j) + c_j + u_j: the node moved rigidly with cell j (eq. 23).
-    if (!rotate) return points[node] + velocity[cell];
-    return points[node] + velocity[cell] + cell_turn[cell] * (points[node] - centres[cell]);
-  };
-  auto interpolate = [&](std::size_t node, int repair_pass,
-                         const std::vector<double>* deformed_volume) -> Vector3 {
-    const std::size_t begin = dual.point_cell_offsets[node];
-    const std::size_t end = dual.point_cell_offsets[node + 1];
-    double volume_average = 0.0;
-    if (repair_pass > 0) {
-      for (std::size_t slot = begin; slot < end; ++slot)
-        volume_average += std::abs((*deformed_volume)[static_cast<std::size_t>(dual.point_cells[slot])]);
-      volume_average /= static_cast<double>(end - begin);
-    }
-    Vector3 sum = Vector3::Zero();
-    double total = 0.0;
-    for (std::size_t slot = begin; slot < end; ++slot) {
-      const std::size_t cell = static_cast<std::size_t>(dual.point_cells[slot]);
-      double weight = geometry.node_weights[slot];
-      if (repair_pass > 0) {
-        // Eq. 27 (reconstructed): ω′ = ω (1 + m V_ave / V_j); inverted and tiny cells are
-        // clamped to a thousandth of V_ave, so they weigh most.
-        const double own = std::max((*deformed_volume)[cell], 1e-3 * volume_average);
-        weight *= 1.0 + repair_pass * volume_average / own;
-      }
-      sum += weight * candidate(node, cell);
-      total += weight;
-    }
-    if (total <= 0.0) {  // every weight clipped: plain average
-      sum = Vector3::Zero();
-      for (std::size_t slot = begin; slot < end; ++slot)
-        sum += candidate(node, static_cast<std::size_t>(dual.point_cells[slot]));
-      total = static_cast<double>(end - begin);
-    }
-    return Vector3(sum / total);
-  };
-  detail::parallel_items(points.size(), [&](std::size_t node) {
-    const std::size_t begin = dual.point_cell_offsets[node];
-    const std::size_t end = dual.point_cell_offsets[node + 1];
-    if (boundary.roles[node] == NodeRole::prescribed || begin == end) {
-      result[node] = points[node] + boundary.displacement[node];
-      return;
-    }
-    result[node] = interpolate(node, 0, nullptr);
-  });
-  detail::project_sliding(boundary, points, result);
+  std::vector<Vector3> result = detail::interpolate_to_nodes(geometry, points, boundary, motion);
   report_.interpolation_seconds = stage_clock.seconds();
 
   // 5. Negative-volume repair (eq. 27), up to repair_passes passes.
   stage_clock = Stopwatch();
-  std::vector<double> deformed_volume(cells);
-  std::vector<char> invalid(cells, 0);
-  auto check = [&]() {
-    detail::parallel_items(cells, [&](std::size_t cell) {
-      deformed_volume[cell] = detail::cell_measure(dual, cell, result);
-      invalid[cell] = !detail::cell_valid(dual, cell, result);
-    });
-    return static_cast<std::size_t>(std::count(invalid.begin(), invalid.end(), 1));
-  };
-  std::size_t inverted = check();
-  report_.inverted_after_interpolation = inverted;
-  // A pass can make things worse where the cells' rigid motions disagree; the result
-  // with the fewest inverted cells is the one returned.
-  std::vector<Vector3> best;
-  if (inverted > 0) best = result;
-  std::size_t best_inverted = inverted;
-  std::vector<char> touched(points.size(), 0);
-  for (int pass = 1; pass <= options_.repair_passes && inverted > 0; ++pass) {
-    std::vector<Index> nodes;
-    for (std::size_t cell = 0; cell < cells; ++cell) {
-      if (!invalid[cell]) continue;
-      for (int local = 0; local < dual.cell_size(cell); ++local) {
-        const Index node = dual.nodes(cell)[local];
-        if (boundary.roles[static_cast<std::size_t>(node)] == NodeRole::prescribed) continue;
-        if (touched[static_cast<std::size_t>(node)] == pass) continue;
-        touched[static_cast<std::size_t>(node)] = static_cast<char>(pass);
-        nodes.push_back(node);
-      }
-    }
-    std::vector<Vector3> updated(nodes.size());
-    detail::parallel_items(nodes.size(), [&](std::size_t slot) {
-      updated[slot] = interpolate(static_cast<std::size_t>(nodes[slot]), pass, &deformed_volume);
-    });
-    for (std::size_t slot = 0; slot < nodes.size(); ++slot)
-      result[static_cast<std::size_t>(nodes[slot])] = updated[slot];
-    detail::project_sliding(boundary, points, result);
-    // Only the cells of the moved nodes change: checking those alone instead of every
-    // cell gives the same count (a full check of the M6's 701 k cells took 0.1–0.2 s a pass).
-    const std::vector<Index> changed = detail::cells_of_nodes(dual, nodes);
-    detail::parallel_items(changed.size(), [&](std::size_t slot) {
-      const std::size_t cell = static_cast<std::size_t>(changed[slot]);
-      deformed_volume[cell] = detail::cell_measure(dual, cell, result);
-      invalid[cell] = !detail::cell_valid(dual, cell, result);
-    });
-    inverted = static_cast<std::size_t>(std::count(invalid.begin(), invalid.end(), 1));
-    report_.repair_passes = pass;
-    if (inverted < best_inverted) {
-      best = result;
-      best_inverted = inverted;
-    }
-  }
-  if (inverted > best_inverted) result = std::move(best);
-  report_.inverted_after_repair = std::min(inverted, best_inverted);
-
+  const detail::RepairOutcome repaired =
+      detail::repair_inverted_cells(geometry, points, boundary, motion, options_.repair_passes, result);
+  report_.inverted_after_interpolation = repaired.inverted_after_interpolation;
+  report_.repair_passes = repaired.passes;
+  report_.inverted_after_repair = repaired.inverted_after_repair;
   report_.repair_seconds = stage_clock.seconds();
   report_.total_seconds = total_clock.seconds();
+  log.detail(summary());
+  return result;
+}
+
+std::string AraMethod::summary() const {
   std::ostringstream summary;
-  summary << "ara: " << cells << " cells, " << walls.boundary_count << " boundaries, distances "
-          << (report_.cache_used ? "(cached) " : "") << report_.distance_seconds << " s, smoothing "
-          << (gauss_seidel ? "(Gauss-Seidel) " : "(conjugate gradients) ") << report_.spin_iterations << " + "
-          << smoothed.iterations << " iterations (r.m.s. " << smoothed.residual << ") "
-          << report_.smoothing_seconds << " s, inverted after interpolation "
-          << report_.inverted_after_interpolation << ", after " << report_.repair_passes << " repair passes "
-          << report_.inverted_after_repair << " (kept the fewest); setup "
+  summary << "ara: " << geometry_->dual.cell_count() << " cells, " << geometry_->walls.boundary_count
+          << " boundaries, distances " << (report_.cache_used ? "(cached) " : "") << report_.distance_seconds
+          << " s, smoothing "
+          << (options_.solver == Solver::gauss_seidel ? "(Gauss-Seidel) " : "(conjugate gradients) ")
+          << report_.spin_iterations << " + " << report_.smoothing_iterations << " iterations (r.m.s. "
+          << report_.smoothing_residual << ") " << report_.smoothing_seconds
+          << " s, inverted after interpolation " << report_.inverted_after_interpolation << ", after "
+          << report_.repair_passes << " repair passes " << report_.inverted_after_repair
+          << " (kept the fewest); setup "
           << (report_.geometry_cached      ? "(cached) "
               : report_.geometry_from_file ? "(from the cache file) "
                                            : "")
           << report_.setup_seconds << " s, total " << report_.total_seconds << " s";
-  log.detail(summary.str());
-  return result;
+  return summary.str();
 }
 
 }  // namespace mixmesh::deform

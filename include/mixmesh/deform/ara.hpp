@@ -140,6 +140,13 @@ class AraMethod : public DeformationMethod {
   }
 
  private:
+  // The geometry of the undeformed mesh from memory, the cache file or afresh; true when
+  // the cache file holds nearest faces only and should get the geometry added.
+  bool prepare(const MixedMesh& mesh, const BoundaryMotion& boundary, const Log& log);
+  // The nearest faces from memory, the cache file or a search (written to the file).
+  void find_nearest(const std::vector<Vector3>& points, bool add_geometry_to_file, const Log& log);
+  std::string summary() const;  // the log line of the last move
+
   AraOptions options_;
   NearestFaces nearest_;
   // What depends only on the undeformed mesh and its markers' roles (dual mesh, wall
