@@ -211,95 +211,109 @@ struct SheetFace {
   std::size_t cell;
 };
 
-}  // namespace
-
-LayerLines find_layer_lines(const DualMesh& dual, const std::vector<MarkerRole>& marker_roles,
-                            const std::vector<Vector3>& points) {
-  LayerLines lines;
-  const std::size_t point_count = points.size();
-  lines.base.assign(point_count, -1);
-  lines.top.assign(point_count, -1);
-  lines.height.assign(point_count, 0.0);
-  lines.star_offsets.assign(point_count + 1, 0);
-  if (dual.planar) return lines;
-
-  const std::size_t cells = dual.cell_count();
-  std::vector<Index> down(point_count, -1);
-  std::vector<char> in_wall_column(cells, 0);
-  std::vector<std::size_t> stamp(cells, 0);
+// What the column walks share: the step down from every node they reached, the cells
+// of the wall columns, the nodes on a wall, the surface star of every node, and the
+// stamps that keep one walk from entering a cell twice.
+struct ColumnWalks {
+  const DualMesh& dual;
+  const std::vector<MarkerRole>& marker_roles;
+  std::vector<Index> down;
+  std::vector<char> in_wall_column;
+  std::vector<char> on_wall;
+  std::vector<std::vector<Index>> star;
+  std::vector<std::size_t> stamp;
   std::size_t walk = 0;
   std::vector<Step> steps;
   std::vector<Index> column_cells;
-  auto commit = [&](const std::vector<Step>& column) {
-    for (const Step& step : column) {
+
+  ColumnWalks(const DualMesh& mesh, const std::vector<MarkerRole>& roles, std::size_t point_count)
+      : dual(mesh),
+        marker_roles(roles),
+        down(point_count, -1),
+        in_wall_column(mesh.cell_count(), 0),
+        on_wall(point_count, 0),
+        star(point_count),
+        stamp(mesh.cell_count(), 0) {}
+
+  bool is_wall(std::size_t face) const {
+    const int marker = dual.face_marker[face];
+    return marker >= 0 && static_cast<std::size_t>(marker) < marker_roles.size() &&
+           marker_roles[static_cast<std::size_t>(marker)] != MarkerRole::sliding;
+  }
+  void add_star(const Face& face) {
+    for (int k = 0; k < face.count; ++k)
+      for (int other = 0; other < face.count; ++other)
+        if (other != k) star[static_cast<std::size_t>(face.nodes[k])].push_back(face.nodes[other]);
+  }
+  ColumnEnd walk_from(std::size_t cell, const Face& entry) {
+    return walk_column(dual, cell, entry, steps, column_cells, stamp, ++walk);
+  }
+  // The last walk's steps become the nodes' steps down; a node reached with another
+  // step before is a conflict, and keeps its first.
+  void commit(LayerLines& lines) {
+    for (const Step& step : steps) {
       Index& entry = down[static_cast<std::size_t>(step.node)];
       if (entry < 0)
         entry = step.down;
       else if (entry != step.down)
         ++lines.conflicts;
     }
-  };
-  auto is_wall = [&](std::size_t face) {
-    const int marker = dual.face_marker[face];
-    return marker >= 0 && static_cast<std::size_t>(marker) < marker_roles.size() &&
-           marker_roles[static_cast<std::size_t>(marker)] != MarkerRole::sliding;
-  };
+  }
+};
 
-  // Wall columns.
-  std::vector<char> on_wall(point_count, 0);
-  std::vector<std::vector<Index>> star(point_count);
-  auto add_star = [&](const Face& face) {
-    for (int k = 0; k < face.count; ++k)
-      for (int other = 0; other < face.count; ++other)
-        if (other != k) star[static_cast<std::size_t>(face.nodes[k])].push_back(face.nodes[other]);
-  };
+// A column from every wall face into the layer cell on it.
+void walk_wall_columns(ColumnWalks& walks, LayerLines& lines) {
+  const DualMesh& dual = walks.dual;
   for (std::size_t face = 0; face < dual.face_count(); ++face) {
-    if (!is_wall(face)) continue;
+    if (!walks.is_wall(face)) continue;
     Face entry;
     entry.count = dual.face_size(face);
     for (int k = 0; k < entry.count; ++k) {
       entry.nodes[k] = dual.boundary_nodes(face)[k];
-      on_wall[static_cast<std::size_t>(entry.nodes[k])] = 1;
+      walks.on_wall[static_cast<std::size_t>(entry.nodes[k])] = 1;
     }
-    add_star(entry);
+    walks.add_star(entry);
     const std::size_t cell = static_cast<std::size_t>(dual.face_cell[face]);
     // (A column split as one stack down to the wall starts with the stack's pyramid.)
     if (!is_layer_cell(dual, cell, entry.count) && split_apex(dual, cell, entry) < 0) continue;
-    const ColumnEnd end = walk_column(dual, cell, entry, steps, column_cells, stamp, ++walk);
+    const ColumnEnd end = walks.walk_from(cell, entry);
     // A column that reaches a boundary is a structured block's (a C- or O-grid): its
     // cells are no sheet's either. Left unmarked, every face of such a block next to a
     // wall edge seeded a sheet that grew over the whole block, and each of its faces
     // walked two more columns to the boundary (a 1 M-node O-grid: a minute).
-    for (Index member : column_cells) in_wall_column[static_cast<std::size_t>(member)] = 1;
+    for (Index member : walks.column_cells) walks.in_wall_column[static_cast<std::size_t>(member)] = 1;
     if (end == ColumnEnd::boundary) {
       ++lines.columns_to_boundary;
       continue;
     }
-    commit(steps);
+    walks.commit(lines);
     ++lines.wall_columns;
   }
+}
 
-  // Sheet faces: seeds leave a wall edge between two layer cells outside the wall
-  // columns; the sheet grows across the first layer of the cells beside it.
+// Sheet faces: seeds leave a wall edge between two layer cells outside the wall
+// columns; the sheet grows across the first layer of the cells beside it.
+std::vector<SheetFace> grow_sheet(const ColumnWalks& walks) {
+  const DualMesh& dual = walks.dual;
   auto sheet_candidate = [&](std::size_t cell, const Face& face) -> Index {
-    if (in_wall_column[cell] || !is_layer_cell(dual, cell, face.count)) return -1;
+    if (walks.in_wall_column[cell] || !is_layer_cell(dual, cell, face.count)) return -1;
     const Index other = other_cell(dual, face, cell);
-    if (other < 0 || in_wall_column[static_cast<std::size_t>(other)] ||
+    if (other < 0 || walks.in_wall_column[static_cast<std::size_t>(other)] ||
         !is_layer_cell(dual, static_cast<std::size_t>(other), face.count))
       return -1;
     return other;
   };
   std::unordered_set<std::array<Index, 4>, FaceKey> known;
   std::vector<SheetFace> sheet;
-  for (std::size_t cell = 0; cell < cells; ++cell) {
-    if (in_wall_column[cell]) continue;
+  for (std::size_t cell = 0; cell < dual.cell_count(); ++cell) {
+    if (walks.in_wall_column[cell]) continue;
     const CellDescriptor& cell_type = cell_descriptor(dual, cell);
     for (int local = 0; local < cell_type.face_count; ++local) {
       const Face face = local_face_nodes(dual, cell, local);
       bool wall_edge = false;
       for (int k = 0; k < face.count && !wall_edge; ++k)
-        wall_edge = on_wall[static_cast<std::size_t>(face.nodes[k])] &&
-                    on_wall[static_cast<std::size_t>(face.nodes[(k + 1) % face.count])];
+        wall_edge = walks.on_wall[static_cast<std::size_t>(face.nodes[k])] &&
+                    walks.on_wall[static_cast<std::size_t>(face.nodes[(k + 1) % face.count])];
       if (!wall_edge || sheet_candidate(cell, face) < 0) continue;
       if (known.insert(sorted_key(face)).second) sheet.push_back({face, cell});
     }
@@ -331,23 +345,28 @@ LayerLines find_layer_lines(const DualMesh& dual, const std::vector<MarkerRole>&
       }
     }
   }
-  lines.sheet_faces = sheet.size();
+  return sheet;
+}
 
-  // Sheet columns, on both sides.
+// Sheet columns, on both sides of every sheet face.
+void walk_sheet_columns(ColumnWalks& walks, const std::vector<SheetFace>& sheet, LayerLines& lines) {
   for (const SheetFace& entry : sheet) {
-    add_star(entry.face);
-    const Index across = other_cell(dual, entry.face, entry.cell);
+    walks.add_star(entry.face);
+    const Index across = other_cell(walks.dual, entry.face, entry.cell);
     for (const std::size_t cell : {entry.cell, static_cast<std::size_t>(across)}) {
-      if (walk_column(dual, cell, entry.face, steps, column_cells, stamp, ++walk) == ColumnEnd::boundary) {
+      if (walks.walk_from(cell, entry.face) == ColumnEnd::boundary) {
         ++lines.columns_to_boundary;
         continue;
       }
-      commit(steps);
+      walks.commit(lines);
       ++lines.sheet_columns;
     }
   }
+}
 
-  // Bases and arc lengths down each line; the line is named by its first node.
+// Bases, arc lengths and tops down each line of steps; the line is named by its first node.
+void measure_lines(const std::vector<Index>& down, const std::vector<Vector3>& points, LayerLines& lines) {
+  const std::size_t point_count = points.size();
   std::vector<Index> line(point_count, -1);
   std::vector<char> done(point_count, 0);
   std::vector<Index> path;
@@ -389,14 +408,37 @@ LayerLines find_layer_lines(const DualMesh& dual, const std::vector<MarkerRole>&
     lines.top[node] = line_top[static_cast<std::size_t>(line[node])];
     ++lines.line_nodes;
   }
+}
 
-  for (std::size_t node = 0; node < point_count; ++node) {
+// The surface stars, sorted and without repeats, packed into LayerLines::star_nodes.
+void pack_stars(std::vector<std::vector<Index>>& star, LayerLines& lines) {
+  for (std::size_t node = 0; node < star.size(); ++node) {
     std::vector<Index>& around = star[node];
     std::sort(around.begin(), around.end());
     around.erase(std::unique(around.begin(), around.end()), around.end());
     lines.star_offsets[node + 1] = lines.star_offsets[node] + around.size();
     lines.star_nodes.insert(lines.star_nodes.end(), around.begin(), around.end());
   }
+}
+
+}  // namespace
+
+LayerLines find_layer_lines(const DualMesh& dual, const std::vector<MarkerRole>& marker_roles,
+                            const std::vector<Vector3>& points) {
+  LayerLines lines;
+  const std::size_t point_count = points.size();
+  lines.base.assign(point_count, -1);
+  lines.top.assign(point_count, -1);
+  lines.height.assign(point_count, 0.0);
+  lines.star_offsets.assign(point_count + 1, 0);
+  if (dual.planar) return lines;
+  ColumnWalks walks(dual, marker_roles, point_count);
+  walk_wall_columns(walks, lines);
+  const std::vector<SheetFace> sheet = grow_sheet(walks);
+  lines.sheet_faces = sheet.size();
+  walk_sheet_columns(walks, sheet, lines);
+  measure_lines(walks.down, points, lines);
+  pack_stars(walks.star, lines);
   return lines;
 }
 
