@@ -469,6 +469,182 @@ void cap_cell(CellType type, std::size_t cell, const Index* nodes, unsigned oute
   ++result.capped_cells;
 }
 
+// The outer cells of one type with their outer faces as bit masks, in the order of
+// their first listing.
+struct OuterCells {
+  CellType type;
+  std::vector<unsigned> outer_faces;  // per cell of the type
+  std::vector<std::size_t> order;
+};
+
+OuterCells outer_cells(const MixedMesh& mesh, CellType type, const std::vector<OuterCell>& cells) {
+  OuterCells outer{type, std::vector<unsigned>(mesh.cell_count(type), 0u), {}};
+  for (const OuterCell& entry : cells) {
+    if (outer.outer_faces[entry.cell] == 0u) outer.order.push_back(entry.cell);
+    outer.outer_faces[entry.cell] |= 1u << entry.outer_face;
+  }
+  return outer;
+}
+
+// Which outer cells are capped rather than split (InterfaceOptions::capped_marker).
+struct CapRules {
+  std::set<FaceKey> capped_quads;  // the boundary quads tagged capped_marker
+  // Edges used by one outer face: the footprint on the symmetry plane. A marked
+  // hexahedron with its outer quad there is split, not capped: the cap's apex would
+  // stand half the quad's width from the plane, and the tetrahedra between it and the
+  // plane's triangles were flat (175-176 deg along the ONERA M6 wake's root).
+  std::map<std::pair<Index, Index>, int> outer_edge_uses;
+  // Nodes of the other outer faces: a hexahedron touching them is split as usual, so
+  // caps stay away from where the marked hull meets the rest (a wake's trailing edge,
+  // the tip trailing edge), whose faces meet at angles a cap could cross (a twisted tip).
+  // Prisms are capped regardless: the one marked prism of the march, the first cell
+  // between the two sheet lines at a junction, has no split point off its edges.
+  std::vector<char> plain_hull_node;
+
+  bool on_footprint(const Index* corners, int count) const {
+    for (int k = 0; k < count; ++k) {
+      const auto uses = outer_edge_uses.find(std::minmax(corners[k], corners[(k + 1) % count]));
+      if (uses != outer_edge_uses.end() && uses->second == 1) return true;
+    }
+    return false;
+  }
+};
+
+CapRules cap_rules(const MixedMesh& mesh, const OuterLayer& layer, const InterfaceOptions& options) {
+  CapRules rules;
+  const int capped_marker = options.capped_marker.empty() ? -1 : mesh.find_marker(options.capped_marker);
+  if (capped_marker >= 0)
+    for (std::size_t face = 0; face < mesh.face_count(FaceType::quad); ++face)
+      if (mesh.faces(FaceType::quad).markers[face] == capped_marker)
+        rules.capped_quads.insert(sorted_face_key(mesh.face(FaceType::quad, face), 4));
+  rules.plain_hull_node.assign(mesh.points.size(), 0);
+  for (const auto& [type, cells] :
+       {std::pair{CellType::hexahedron, &layer.hexahedra}, std::pair{CellType::prism, &layer.prisms}})
+    for (const OuterCell& outer : *cells) {
+      Index corners[4] = {-1, -1, -1, -1};
+      const int count = face_nodes(mesh, {type, static_cast<Index>(outer.cell), outer.outer_face}, corners);
+      for (int k = 0; k < count; ++k)
+        ++rules.outer_edge_uses[std::minmax(corners[k], corners[(k + 1) % count])];
+      if (count == 4 && rules.capped_quads.count(sorted_face_key(corners, 4))) continue;
+      for (int corner = 0; corner < count; ++corner)
+        rules.plain_hull_node[static_cast<std::size_t>(corners[corner])] = 1;
+    }
+  return rules;
+}
+
+// A cell is split when a quad faces the far field; a prism whose outer faces are
+// triangles passes through and adds them to the hull as they are. Cells with an outer
+// quad tagged capped_marker are capped instead, except hexahedra that touch another
+// outer face or have a marked quad on the footprint.
+void choose_treatment(const MixedMesh& mesh, const OuterCells& outer, const CapRules& rules,
+                      std::vector<char>& split, std::vector<char>& capped) {
+  const CellType type = outer.type;
+  split.assign(outer.outer_faces.size(), 0);
+  capped.assign(outer.outer_faces.size(), 0);
+  for (std::size_t cell : outer.order) {
+    bool quad = false, footprint = false;
+    for (int face = 0; face < descriptor(type).face_count; ++face) {
+      if (!((outer.outer_faces[cell] >> face) & 1u)) continue;
+      Index corners[4] = {-1, -1, -1, -1};
+      if (face_nodes(mesh, {type, static_cast<Index>(cell), face}, corners) != 4) continue;
+      quad = true;
+      const bool marked = rules.capped_quads.count(sorted_face_key(corners, 4)) > 0;
+      capped[cell] = capped[cell] || marked;
+      footprint = footprint || (marked && rules.on_footprint(corners, 4));
+    }
+    const Index* nodes = mesh.cell(type, cell);
+    auto plain = [&](Index node) { return rules.plain_hull_node[static_cast<std::size_t>(node)] != 0; };
+    if (type == CellType::hexahedron && (footprint || std::any_of(nodes, nodes + node_count(type), plain)))
+      capped[cell] = 0;
+    split[cell] = quad && !capped[cell];
+  }
+}
+
+// The split points, found side by side: each search evaluates hundreds of piece shapes
+// on the thin cells of free edges, and depends on its own cell alone. Then each cell
+// goes to one split: a stack that reaches a cell another split took already is split
+// alone, and an outer cell a stack took is not split again (its choice is left empty).
+std::vector<SplitChoice> choose_splits(const MixedMesh& mesh, const OuterCells& outer,
+                                       const std::vector<char>& split, const std::vector<char>& capped,
+                                       const FaceConnectivity& connectivity, const InterfaceOptions& options,
+                                       std::vector<char>& stacked) {
+  const CellType type = outer.type;
+  const FaceNeighbours neighbours = same_type_neighbours(mesh, type, connectivity);
+  std::vector<SplitChoice> choices(outer.order.size());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, outer.order.size(), 64),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                      for (std::size_t item = range.begin(); item != range.end(); ++item) {
+                        const std::size_t cell = outer.order[item];
+                        if (split[cell])
+                          choices[item] =
+                              choose_stack(mesh, type, cell, outer.outer_faces, capped, neighbours, options);
+                      }
+                    });
+  stacked.assign(outer.outer_faces.size(), 0);
+  for (std::size_t item = 0; item < outer.order.size(); ++item) {
+    const std::size_t cell = outer.order[item];
+    SplitChoice& choice = choices[item];
+    if (!split[cell]) continue;
+    if (stacked[cell]) {
+      choice.cells.clear();
+      continue;
+    }
+    if (std::any_of(choice.cells.begin() + 1, choice.cells.end(),
+                    [&](std::size_t below) { return stacked[below] != 0; })) {
+      choice =
+          choose_split(type, mesh.points, {{mesh.cell(type, cell), outer.outer_faces[cell], 0u}}, options);
+      choice.cells = {cell};
+    }
+    for (std::size_t taken : choice.cells) stacked[taken] = 1;
+  }
+  return choices;
+}
+
+// The cells of one type into the result: untouched cells as they are, then the caps of
+// the marked cells, then the splits (or, for an unsplittable cell where allowed, the
+// whole cell capped) and the outer faces of the cells that pass through.
+void replace_outer_cells(const MixedMesh& mesh, const OuterCells& outer, const CapRules& rules,
+                         const FaceConnectivity& connectivity, const InterfaceOptions& options,
+                         InterfaceResult& result, std::vector<interface_detail::TallCap>& tall_caps) {
+  const CellType type = outer.type;
+  std::vector<char> split, capped, stacked;
+  choose_treatment(mesh, outer, rules, split, capped);
+  const std::vector<SplitChoice> choices =
+      choose_splits(mesh, outer, split, capped, connectivity, options, stacked);
+  const CellBlock& block = mesh.block(type);
+  const std::vector<unsigned>& outer_faces = outer.outer_faces;
+  for (std::size_t cell = 0; cell < outer_faces.size(); ++cell)
+    if (!stacked[cell]) result.mesh.add_cell(type, mesh.cell(type, cell), block.regions[cell]);
+  for (std::size_t cell : outer.order)
+    if (capped[cell])
+      cap_cell(type, cell, mesh.cell(type, cell), outer_faces[cell], block.regions[cell], options,
+               options.marked_cap_height, false, result, &tall_caps);
+  for (std::size_t item = 0; item < outer.order.size(); ++item) {
+    const std::size_t cell = outer.order[item];
+    if (capped[cell]) continue;
+    if (split[cell]) {
+      if (choices[item].cells.empty()) continue;  // in a stack split with the cell above
+      // The centre split unless no split point keeps every piece valid (thin cells with
+      // a warped face): then, if allowed, the cell stays whole and its outer quads are
+      // capped; if not, split_cell names the inverted piece.
+      if (choices[item].worst > 0.0 || !options.cap_unsplittable_cells) {
+        split_cell(mesh, type, outer_faces, options, choices[item], result);
+      } else {
+        result.mesh.add_cell(type, mesh.cell(type, cell), block.regions[cell]);
+        cap_cell(type, cell, mesh.cell(type, cell), outer_faces[cell], block.regions[cell], options,
+                 options.cap_height, true, result);
+      }
+      continue;
+    }
+    for (int face = 0; face < descriptor(type).face_count; ++face) {
+      if (!((outer_faces[cell] >> face) & 1u)) continue;
+      const LocalFace& local = descriptor(type).faces[static_cast<std::size_t>(face)];
+      const Index* nodes = mesh.cell(type, cell);
+      result.hull.push_back({nodes[local.nodes[0]], nodes[local.nodes[1]], nodes[local.nodes[2]]});
+    }
+  }
+}
+
 }  // namespace
 
 InterfaceResult split_interface(const MixedMesh& mesh, const OuterLayer& layer,
@@ -485,146 +661,18 @@ InterfaceResult split_interface(const MixedMesh& mesh, const OuterLayer& layer,
   out.marker_names = mesh.marker_names;
   for (CellType type : {CellType::tetrahedron, CellType::pyramid}) out.block(type) = mesh.block(type);
 
-  // The boundary quads tagged capped_marker: their cells are capped, not split.
-  std::set<FaceKey> capped_quads;
-  const int capped_marker = options.capped_marker.empty() ? -1 : mesh.find_marker(options.capped_marker);
-  if (capped_marker >= 0)
-    for (std::size_t face = 0; face < mesh.face_count(FaceType::quad); ++face)
-      if (mesh.faces(FaceType::quad).markers[face] == capped_marker)
-        capped_quads.insert(sorted_face_key(mesh.face(FaceType::quad, face), 4));
-
-  // Edges used by one outer face: the footprint on the symmetry plane. A marked
-  // hexahedron with its outer quad there is split, not capped: the cap's apex would
-  // stand half the quad's width from the plane, and the tetrahedra between it and the
-  // plane's triangles were flat (175-176 deg along the ONERA M6 wake's root).
-  std::map<std::pair<Index, Index>, int> outer_edge_uses;
-  for (const auto& [type, cells] :
-       {std::pair{CellType::hexahedron, &layer.hexahedra}, std::pair{CellType::prism, &layer.prisms}})
-    for (const OuterCell& outer : *cells) {
-      Index corners[4] = {-1, -1, -1, -1};
-      const int count = face_nodes(mesh, {type, static_cast<Index>(outer.cell), outer.outer_face}, corners);
-      for (int k = 0; k < count; ++k) ++outer_edge_uses[std::minmax(corners[k], corners[(k + 1) % count])];
-    }
-  auto on_footprint = [&](const Index* corners, int count) {
-    for (int k = 0; k < count; ++k)
-      if (outer_edge_uses[std::minmax(corners[k], corners[(k + 1) % count])] == 1) return true;
-    return false;
-  };
-
-  // Nodes of the other outer faces: a hexahedron touching them is split as usual, so
-  // caps stay away from where the marked hull meets the rest (a wake's trailing edge,
-  // the tip trailing edge), whose faces meet at angles a cap could cross (a twisted tip).
-  // Prisms are capped regardless: the one marked prism of the march, the first cell
-  // between the two sheet lines at a junction, has no split point off its edges.
-  std::vector<char> plain_hull_node(mesh.points.size(), 0);
-  for (const auto& [type, cells] :
-       {std::pair{CellType::hexahedron, &layer.hexahedra}, std::pair{CellType::prism, &layer.prisms}})
-    for (const OuterCell& outer : *cells) {
-      Index corners[4] = {-1, -1, -1, -1};
-      const int count = face_nodes(mesh, {type, static_cast<Index>(outer.cell), outer.outer_face}, corners);
-      if (count == 4 && capped_quads.count(sorted_face_key(corners, 4))) continue;
-      for (int corner = 0; corner < count; ++corner)
-        plain_hull_node[static_cast<std::size_t>(corners[corner])] = 1;
-    }
-
+  const CapRules rules = cap_rules(mesh, layer, options);
   std::vector<interface_detail::TallCap> tall_caps;
-  // Outer faces per cell as bit masks; cells in order of their first listing.
   std::set<FaceKey> hull_faces;  // to drop the old tags of the outer faces
   for (const auto& [type, cells] :
        {std::pair{CellType::hexahedron, &layer.hexahedra}, std::pair{CellType::prism, &layer.prisms}}) {
-    const FaceNeighbours neighbours = same_type_neighbours(mesh, type, connectivity);
-    std::vector<unsigned> outer_faces(mesh.cell_count(type), 0u);
-    std::vector<std::size_t> order;
-    for (const OuterCell& outer : *cells) {
-      if (outer_faces[outer.cell] == 0u) order.push_back(outer.cell);
-      outer_faces[outer.cell] |= 1u << outer.outer_face;
+    for (const OuterCell& entry : *cells) {
       Index corners[4] = {-1, -1, -1, -1};
-      const int count = face_nodes(mesh, {type, static_cast<Index>(outer.cell), outer.outer_face}, corners);
+      const int count = face_nodes(mesh, {type, static_cast<Index>(entry.cell), entry.outer_face}, corners);
       hull_faces.insert(sorted_face_key(corners, count));
     }
-    // A cell is split when a quad faces the far field; a prism whose outer faces are
-    // triangles passes through and adds them to the hull as they are.
-    // Cells with an outer quad tagged capped_marker are capped instead, except hexahedra
-    // that touch another outer face or have a marked quad on the footprint.
-    std::vector<char> split(outer_faces.size(), 0), capped(outer_faces.size(), 0);
-    for (std::size_t cell : order) {
-      bool quad = false, footprint = false;
-      for (int face = 0; face < descriptor(type).face_count; ++face) {
-        if (!((outer_faces[cell] >> face) & 1u)) continue;
-        Index corners[4] = {-1, -1, -1, -1};
-        if (face_nodes(mesh, {type, static_cast<Index>(cell), face}, corners) != 4) continue;
-        quad = true;
-        const bool marked = capped_quads.count(sorted_face_key(corners, 4)) > 0;
-        capped[cell] = capped[cell] || marked;
-        footprint = footprint || (marked && on_footprint(corners, 4));
-      }
-      const Index* nodes = mesh.cell(type, cell);
-      auto plain = [&](Index node) { return plain_hull_node[static_cast<std::size_t>(node)] != 0; };
-      if (type == CellType::hexahedron && (footprint || std::any_of(nodes, nodes + node_count(type), plain)))
-        capped[cell] = 0;
-      split[cell] = quad && !capped[cell];
-    }
-    // The split points, found side by side: each search evaluates hundreds of piece
-    // shapes on the thin cells of free edges, and depends on its own cell alone.
-    std::vector<SplitChoice> choices(order.size());
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, order.size(), 64),
-                      [&](const tbb::blocked_range<std::size_t>& range) {
-                        for (std::size_t item = range.begin(); item != range.end(); ++item) {
-                          const std::size_t cell = order[item];
-                          if (split[cell])
-                            choices[item] =
-                                choose_stack(mesh, type, cell, outer_faces, capped, neighbours, options);
-                        }
-                      });
-    // Each cell goes to one split: a stack that reaches a cell another split took
-    // already is split alone, and an outer cell a stack took is not split again.
-    std::vector<char> stacked(outer_faces.size(), 0);
-    for (std::size_t item = 0; item < order.size(); ++item) {
-      const std::size_t cell = order[item];
-      SplitChoice& choice = choices[item];
-      if (!split[cell]) continue;
-      if (stacked[cell]) {
-        choice.cells.clear();
-        continue;
-      }
-      if (std::any_of(choice.cells.begin() + 1, choice.cells.end(),
-                      [&](std::size_t below) { return stacked[below] != 0; })) {
-        choice = choose_split(type, mesh.points, {{mesh.cell(type, cell), outer_faces[cell], 0u}}, options);
-        choice.cells = {cell};
-      }
-      for (std::size_t taken : choice.cells) stacked[taken] = 1;
-    }
-    const CellBlock& block = mesh.block(type);
-    for (std::size_t cell = 0; cell < outer_faces.size(); ++cell)
-      if (!stacked[cell]) out.add_cell(type, mesh.cell(type, cell), block.regions[cell]);
-    for (std::size_t cell : order)
-      if (capped[cell])
-        cap_cell(type, cell, mesh.cell(type, cell), outer_faces[cell], block.regions[cell], options,
-                 options.marked_cap_height, false, result, &tall_caps);
-    for (std::size_t item = 0; item < order.size(); ++item) {
-      const std::size_t cell = order[item];
-      if (capped[cell]) continue;
-      if (split[cell]) {
-        if (choices[item].cells.empty()) continue;  // in a stack split with the cell above
-        // The centre split unless no split point keeps every piece valid (thin cells with
-        // a warped face): then, if allowed, the cell stays whole and its outer quads are
-        // capped; if not, split_cell names the inverted piece.
-        if (choices[item].worst > 0.0 || !options.cap_unsplittable_cells) {
-          split_cell(mesh, type, outer_faces, options, choices[item], result);
-        } else {
-          out.add_cell(type, mesh.cell(type, cell), block.regions[cell]);
-          cap_cell(type, cell, mesh.cell(type, cell), outer_faces[cell], block.regions[cell], options,
-                   options.cap_height, true, result);
-        }
-        continue;
-      }
-      for (int face = 0; face < descriptor(type).face_count; ++face) {
-        if (!((outer_faces[cell] >> face) & 1u)) continue;
-        const LocalFace& local = descriptor(type).faces[static_cast<std::size_t>(face)];
-        const Index* nodes = mesh.cell(type, cell);
-        result.hull.push_back({nodes[local.nodes[0]], nodes[local.nodes[1]], nodes[local.nodes[2]]});
-      }
-    }
+    replace_outer_cells(mesh, outer_cells(mesh, type, *cells), rules, connectivity, options, result,
+                        tall_caps);
   }
 
   for (FaceType type : all_face_types) {
