@@ -9,7 +9,7 @@
 #include "mixmesh/config/config.hpp"
 #include "mixmesh/core/log.hpp"
 #include "mixmesh/io/mesh_io.hpp"
-#include "mixmesh/surface/surface_config.hpp"
+#include "mixmesh/pipeline/surface_options.hpp"
 #include "mixmesh/surface/surface_conversion.hpp"
 
 namespace mixmesh::cli {

@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "mixmesh/pipeline/generate.hpp"
-#include "mixmesh/surface/surface_config.hpp"
+#include "mixmesh/pipeline/surface_options.hpp"
 
 namespace mixmesh {
 

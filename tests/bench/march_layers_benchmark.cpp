@@ -8,7 +8,7 @@
 
 #include "mixmesh/config/config.hpp"
 #include "mixmesh/march/march_layers.hpp"
-#include "mixmesh/surface/surface_config.hpp"
+#include "mixmesh/pipeline/surface_options.hpp"
 
 namespace {
 

@@ -5,8 +5,8 @@
 #include <filesystem>
 
 #include "mixmesh/config/config.hpp"
-#include "mixmesh/geometry/wing_config.hpp"
-#include "mixmesh/surface/surface_config.hpp"
+#include "mixmesh/pipeline/surface_options.hpp"
+#include "mixmesh/pipeline/wing_options.hpp"
 #include "mixmesh/surface/wing_surface.hpp"
 
 namespace {

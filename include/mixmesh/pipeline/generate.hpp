@@ -20,8 +20,8 @@
 #include "mixmesh/march/march_layers.hpp"
 #include "mixmesh/mesh/mixed_mesh.hpp"
 #include "mixmesh/optimize/sliver_removal.hpp"
+#include "mixmesh/pipeline/surface_options.hpp"
 #include "mixmesh/quality/validity.hpp"
-#include "mixmesh/surface/surface_config.hpp"
 
 namespace mixmesh {
 

@@ -1,6 +1,7 @@
-#include "mixmesh/surface/surface_config.hpp"
+// Reads the [surface] table and the surface stage's setup (surface_options.hpp).
+#include "mixmesh/pipeline/surface_options.hpp"
 
-#include "mixmesh/geometry/wing_config.hpp"
+#include "mixmesh/pipeline/wing_options.hpp"
 
 namespace mixmesh {
 
@@ -57,23 +58,6 @@ SurfaceSetup read_surface_setup(config::Section& root) {
   if (!setup.wing && setup.imports.empty())
     root.fail({}, "the surface needs a [wing] table or [[surface.import]] entries");
   return setup;
-}
-
-SurfaceMesh build_surface(const SurfaceSetup& setup) {
-  if (setup.imports.empty()) return generate_wing_surface(*setup.wing, setup.options);
-  ImportOptions import_options = setup.import_options;
-  SurfaceMesh surface;
-  if (setup.wing) {
-    surface = generate_wing_surface(*setup.wing, setup.options);
-    import_options.symmetry_y = surface.symmetry_y;
-    import_options.symmetry_tolerance = surface.symmetry_tolerance;
-  }
-  SurfaceMesh imported = import_surfaces(setup.imports, import_options);
-  append_surface(surface, imported);
-  surface.symmetry_y = import_options.symmetry_y;
-  surface.symmetry_tolerance = import_options.symmetry_tolerance;
-  merge_coincident_nodes(surface, import_options.merge_tolerance);
-  return surface;
 }
 
 }  // namespace mixmesh

@@ -9,15 +9,15 @@
 
 #include "mixmesh/config/config.hpp"
 #include "mixmesh/core/error.hpp"
-#include "mixmesh/geometry/wing_config.hpp"
-#include "mixmesh/surface/surface_config.hpp"
+#include "mixmesh/pipeline/surface_options.hpp"
+#include "mixmesh/pipeline/wing_options.hpp"
 
 using namespace mixmesh;
 
 namespace {
 
 std::filesystem::path folder() {
-  const auto path = std::filesystem::path(::testing::TempDir()) / "surface_config_test";
+  const auto path = std::filesystem::path(::testing::TempDir()) / "pipeline_surface_options_test";
   std::filesystem::create_directories(path);
   return path;
 }

@@ -1,4 +1,5 @@
-#include "mixmesh/geometry/wing_config.hpp"
+// Reads the [wing] table (wing_options.hpp).
+#include "mixmesh/pipeline/wing_options.hpp"
 
 #include <cmath>
 

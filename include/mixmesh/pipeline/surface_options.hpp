@@ -1,4 +1,5 @@
-// The [surface] table of a config file -> SurfaceOptions (defaults in SurfaceOptions).
+// The [surface] table of a config file -> SurfaceOptions (defaults in SurfaceOptions),
+// and the surface stage's whole setup from a config file.
 //
 //   [surface]
 //   chordwise_cells = 200            # around the section, lower + upper
@@ -25,12 +26,8 @@
 //   flip = false                     # reverse the orientation
 #pragma once
 
-#include <optional>
-
 #include "mixmesh/config/config.hpp"
-#include "mixmesh/geometry/planform.hpp"
-#include "mixmesh/surface/imported_surface.hpp"
-#include "mixmesh/surface/wing_surface.hpp"
+#include "mixmesh/surface/surface_setup.hpp"
 
 namespace mixmesh {
 
@@ -39,18 +36,8 @@ namespace mixmesh {
 // are left to read_surface_setup).
 SurfaceOptions read_surface_options(config::Section& surface);
 
-// Everything the surface stage needs from a config file: an optional [wing] (the
-// generated wing surface), [surface] options and imported patches. At least one of
-// [wing] and [[surface.import]] must be given.
-struct SurfaceSetup {
-  std::optional<WingDefinition> wing;
-  SurfaceOptions options;
-  std::vector<SurfaceImport> imports;
-  ImportOptions import_options;
-};
+// An optional [wing], the [surface] options and the [[surface.import]] patches; at least
+// one of [wing] and [[surface.import]] must be given.
 SurfaceSetup read_surface_setup(config::Section& root);
-
-// The wing surface (if any) plus the imported patches, merged at coincident nodes.
-SurfaceMesh build_surface(const SurfaceSetup& setup);
 
 }  // namespace mixmesh
