@@ -12,6 +12,7 @@
 #include "mixmesh/deform/ara.hpp"
 #include "mixmesh/deform/deform.hpp"
 #include "mixmesh/io/mesh_io.hpp"
+#include "mixmesh/pipeline/deform_options.hpp"
 
 namespace mixmesh::cli {
 

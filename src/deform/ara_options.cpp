@@ -1,4 +1,4 @@
-// The ARA blend β(α), its options and the nearest-face cache file.
+// The ARA blend β(α) and the nearest-face cache file.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -20,36 +20,6 @@ double blend(double alpha, double gamma, BlendForm form) {
   const double s = 2.0 * clamped - 1.0;
   if (gamma <= 0.0) return 0.5 + 0.5 * s;  // the limit γ → 0
   return 0.5 + 0.5 * (1.0 - std::exp(-gamma * s)) / (1.0 - std::exp(-gamma));
-}
-
-AraOptions read_ara_options(config::Section& section) {
-  AraOptions options;
-  std::string predictor = "rotation";
-  section.read_choice("predictor", predictor, {"rotation", "translation"});
-  options.predictor = predictor == "rotation" ? Predictor::rotation : Predictor::translation;
-  std::string smoothing = "rigid_transport";
-  section.read_choice("smoothing", smoothing, {"rigid_transport", "plain"});
-  options.smoothing = smoothing == "plain" ? Smoothing::plain : Smoothing::rigid_transport;
-  std::string solver = "conjugate_gradient";
-  section.read_choice("solver", solver, {"conjugate_gradient", "gauss_seidel"});
-  options.solver = solver == "gauss_seidel" ? Solver::gauss_seidel : Solver::conjugate_gradient;
-  std::string form = "exponential";
-  section.read_choice("blend", form, {"exponential", "linear"});
-  options.blend_form = form == "exponential" ? BlendForm::exponential : BlendForm::linear;
-  section.read("gamma", options.gamma, config::Bounds::positive());
-  section.read("candidates", options.candidates, config::Bounds::between(1, 256));
-  section.read("relaxation", options.relaxation, config::Bounds::between(0.0, 1.0));
-  section.read("tolerance", options.tolerance, config::Bounds::positive());
-  section.read("max_iterations", options.max_iterations, config::Bounds::non_negative());
-  section.read("repair_passes", options.repair_passes, config::Bounds::between(0, 100));
-  section.read_path("cache", options.cache_file);
-  section.read("cache_geometry", options.cache_geometry);
-  section.finish();
-  return options;
-}
-
-std::unique_ptr<DeformationMethod> make_ara_method(config::Section* options) {
-  return std::make_unique<AraMethod>(options ? read_ara_options(*options) : AraOptions{});
 }
 
 namespace {

@@ -1,13 +1,13 @@
-// Methods by name, and motion files with their method table.
+// Methods by name with their options.
 #include <algorithm>
 #include <array>
 #include <cmath>
 
-#include "mixmesh/config/config.hpp"
 #include "mixmesh/core/error.hpp"
 #include "mixmesh/deform/ara.hpp"
 #include "mixmesh/deform/deform.hpp"
 #include "mixmesh/deform/idw.hpp"
+#include "mixmesh/deform/methods.hpp"
 
 namespace mixmesh::deform {
 
@@ -108,67 +108,12 @@ class IdwMethod : public DeformationMethod {
   IdwOptions options_;
 };
 
-IdwOptions read_idw_options(config::Section& section) {
-  IdwOptions options;
-  std::string form = "rotation";
-  section.read_choice("form", form, {"rotation", "simple"});
-  options.form = form == "rotation" ? IdwForm::rotation : IdwForm::simple;
-  section.read("exponent", options.exponent, config::Bounds::positive());
-  section.read("exact", options.exact);
-  section.read("tree_tolerance", options.tree_tolerance, config::Bounds::positive());
-  if (section.has("translation_exponent")) {
-    double value = 1.0;
-    section.read("translation_exponent", value, config::Bounds::non_negative());
-    options.translation_exponent = value;
-  }
-  if (section.has("rotation_exponent")) {
-    double value = 2.0;
-    section.read("rotation_exponent", value, config::Bounds::non_negative());
-    options.rotation_exponent = value;
-  }
-  section.read("reference_count", options.reference_count, config::Bounds::at_least(1));
-  section.finish();
-  return options;
-}
-
 }  // namespace
 
-std::unique_ptr<DeformationMethod> make_method(const std::string& name, config::Section* options) {
-  if (name == "ara") return make_ara_method(options);
-  if (name == "idw") return std::make_unique<IdwMethod>(options ? read_idw_options(*options) : IdwOptions{});
-  throw Error("unknown deformation method '" + name + "' (ara or idw)");
-}
-
-DeformSetup read_deform_setup(const std::filesystem::path& motion_file) {
-  const config::Document document = config::Document::load(motion_file);
-  config::Section root = document.root();
-  DeformSetup setup;
-  setup.motion = read_motion(root);
-  std::optional<config::Section> options = root.optional_section(setup.motion.method);
-  setup.method = make_method(setup.motion.method, options ? &*options : nullptr);
-  root.finish();
-  return setup;
-}
-
-DeformStep read_deform_step(config::Section& section) {
-  DeformStep step;
-  step.where = section.where();
-  section.read("name", step.name);
-  if (step.name.empty() || step.name.find_first_of("/\\") != std::string::npos)
-    section.fail("name", "a [[deform]] step needs a name for its output files (no slashes)");
-  step.motion = read_motion(section);
-  std::optional<config::Section> options = section.optional_section(step.motion.method);
-  if (step.motion.method == "ara") {
-    const AraOptions settings = options ? read_ara_options(*options) : AraOptions{};
-    if (!settings.cache_file.empty())
-      options->fail("cache", "no nearest-face cache in a [[deform]] step: every generated mesh differs");
-    step.make_method = [settings] { return std::make_unique<AraMethod>(settings); };
-  } else {
-    const IdwOptions settings = options ? read_idw_options(*options) : IdwOptions{};
-    step.make_method = [settings] { return std::make_unique<IdwMethod>(settings); };
-  }
-  section.finish();
-  return step;
+std::unique_ptr<DeformationMethod> make_method(const MethodOptions& options) {
+  if (options.name == "ara") return std::make_unique<AraMethod>(options.ara);
+  if (options.name == "idw") return std::make_unique<IdwMethod>(options.idw);
+  throw Error("unknown deformation method '" + options.name + "' (ara or idw)");
 }
 
 }  // namespace mixmesh::deform

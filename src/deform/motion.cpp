@@ -1,4 +1,4 @@
-// Motion files: bodies, their laws and the CSV data some laws need.
+// Motions: the poses of their bodies, and the CSV data some laws need.
 #include "mixmesh/deform/motion.hpp"
 
 #include <algorithm>
@@ -14,14 +14,6 @@ namespace mixmesh::deform {
 namespace {
 
 constexpr double pi = 3.14159265358979323846;
-
-Vector3 read_vector(config::Section& section, std::string_view key, const Vector3& fallback) {
-  std::vector<double> values;
-  section.read(key, values);
-  if (values.empty()) return fallback;
-  if (values.size() != 3) section.fail(key, "'" + std::string(key) + "' must hold three numbers [x, y, z]");
-  return {values[0], values[1], values[2]};
-}
 
 // Splits a CSV line into numbers; false when a field is not a number (a header line).
 bool parse_numbers(const std::string& line, std::vector<double>& numbers) {
@@ -77,47 +69,6 @@ std::vector<std::vector<double>> read_csv(const std::filesystem::path& file, std
   return rows;
 }
 
-Body read_body(config::Section& section, std::size_t number) {
-  Body body;
-  body.name = "body " + std::to_string(number + 1);
-  section.read("name", body.name);
-  section.read("markers", body.markers);
-  if (body.markers.empty()) section.fail("markers", "body '" + body.name + "' needs markers = [\"name\", …]");
-  std::string law = "rigid";
-  section.read_choice("motion", law, {"rigid", "pitch_plunge", "trajectory", "mode", "surface"});
-  body.centre = read_vector(section, "centre", body.centre);
-  body.axis = read_vector(section, "axis", body.axis);
-  if (law == "rigid") {
-    body.law = MotionLaw::rigid;
-    section.read("angle", body.angle);
-    body.translation = read_vector(section, "translation", body.translation);
-  } else if (law == "pitch_plunge") {
-    body.law = MotionLaw::pitch_plunge;
-    section.read("pitch_amplitude", body.pitch_amplitude);
-    section.read("plunge_amplitude", body.plunge_amplitude);
-    body.plunge_direction = read_vector(section, "plunge_direction", body.plunge_direction);
-    section.read("phase", body.phase);
-    section.read("period_steps", body.period_steps, config::Bounds::at_least(1));
-  } else if (law == "trajectory") {
-    body.law = MotionLaw::trajectory;
-    std::filesystem::path file;
-    section.read_path("file", file);
-    if (file.empty()) section.fail("file", "trajectory body '" + body.name + "' needs file = \"poses.csv\"");
-    body.poses = read_trajectory(file, body.centre);
-  } else {
-    body.law = law == "mode" ? MotionLaw::mode : MotionLaw::surface;
-    std::filesystem::path file;
-    section.read_path("file", file);
-    if (file.empty()) section.fail("file", law + " body '" + body.name + "' needs file = \"nodes.csv\"");
-    body.field = read_node_field(file);
-    if (body.law == MotionLaw::mode) section.read("scale", body.scale);
-  }
-  if ((body.law == MotionLaw::rigid || body.law == MotionLaw::pitch_plunge) && body.axis.norm() == 0.0)
-    section.fail("axis", "body '" + body.name + "': the rotation axis must not be zero");
-  section.finish();
-  return body;
-}
-
 }  // namespace
 
 Vector3 RigidPose::rotation_vector() const {
@@ -127,31 +78,6 @@ Vector3 RigidPose::rotation_vector() const {
 Eigen::Matrix3d axis_rotation(const Vector3& axis, double angle_degrees) {
   if (axis.norm() == 0.0) throw Error("rotation axis must not be zero");
   return Eigen::AngleAxisd(angle_degrees * pi / 180.0, axis.normalized()).toRotationMatrix();
-}
-
-Motion read_motion(config::Section& section) {
-  Motion motion;
-  section.read_choice("method", motion.method, {"ara", "idw"});
-  section.read("symmetry", motion.symmetry);
-  const bool steps_given = section.has("steps");
-  section.read("steps", motion.steps, config::Bounds::at_least(1));
-  for (config::Section& body : section.sections("body"))
-    motion.bodies.push_back(read_body(body, motion.bodies.size()));
-  if (motion.bodies.empty()) section.fail("", "the motion has no [[body]]: nothing would move");
-  std::size_t longest_trajectory = 0;
-  for (const Body& body : motion.bodies)
-    if (body.law == MotionLaw::trajectory)
-      longest_trajectory = std::max(longest_trajectory, body.poses.size());
-  motion.incremental = longest_trajectory > 0;
-  section.read("incremental", motion.incremental);
-  if (longest_trajectory > 0) {
-    if (!steps_given) motion.steps = static_cast<int>(longest_trajectory);
-    for (const Body& body : motion.bodies)
-      if (body.law == MotionLaw::trajectory && body.poses.size() < static_cast<std::size_t>(motion.steps))
-        section.fail("steps", "body '" + body.name + "' has " + std::to_string(body.poses.size()) +
-                                  " trajectory poses for " + std::to_string(motion.steps) + " steps");
-  }
-  return motion;
 }
 
 std::vector<RigidPose> read_trajectory(const std::filesystem::path& file, const Vector3& centre) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "mixmesh/pipeline/deform_options.hpp"
 #include "mixmesh/pipeline/generate.hpp"
 #include "mixmesh/pipeline/surface_options.hpp"
 

@@ -156,9 +156,4 @@ class AraMethod : public DeformationMethod {
   AraReport report_;
 };
 
-// Reads gamma, predictor, smoothing, solver, blend, candidates, relaxation, tolerance, max_iterations,
-// repair_passes, cache from an [ara] table.
-AraOptions read_ara_options(config::Section& section);
-std::unique_ptr<DeformationMethod> make_ara_method(config::Section* options);
-
 }  // namespace mixmesh::deform

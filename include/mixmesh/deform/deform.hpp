@@ -11,9 +11,7 @@
 // A method is pluggable: derive from DeformationMethod and implement move(). The
 // object lives across the steps of a sequence, so it may cache whatever depends only
 // on the connectivity (ARA keeps its nearest boundary faces). Each method's header
-// declares its factory, `std::unique_ptr<DeformationMethod> make_NAME_method(config::Section*
-// options)` (options = the [NAME] table of the motion file, nullptr for defaults), and
-// make_method() below dispatches on the name.
+// declares its options struct; make_method() (methods.hpp) builds a method by name.
 #pragma once
 
 #include <array>
@@ -154,31 +152,17 @@ std::vector<double> wall_angles(const MixedMesh& mesh, const WallLines& lines);
 DeformResult deform_step(const MixedMesh& mesh, const MixedMesh& reference, const Motion& motion, int step,
                          DeformationMethod& method, const Log& log);
 
-// A method by name ("ara", "idw") with its options read from `options` (the [ara] or
-// [idw] table of a motion file; nullptr for defaults).
-std::unique_ptr<DeformationMethod> make_method(const std::string& name, config::Section* options);
-
-// A motion file: the motion, and the method it names built from its [ara]/[idw] table.
-// Unknown keys are errors with their file:line:column.
-struct DeformSetup {
-  Motion motion;
-  std::unique_ptr<DeformationMethod> method;
-};
-DeformSetup read_deform_setup(const std::filesystem::path& motion_file);
-
 // A [[deform]] step of a generation config: a motion (keys as in a motion file, bodies
 // as [[deform.body]], method options as [deform.ara]/[deform.idw]) and a `name` for its
 // output files. It keeps the method's settings, not a method: each run of the step
 // makes a fresh one (an ARA method keeps the nearest faces of the mesh it last moved).
-// Unknown keys are errors with their file:line:column; an ARA `cache` file is refused
-// (every generated mesh differs).
+// The pipeline's deform_options.hpp reads it.
 struct DeformStep {
   std::string name;
   std::string where;  // file:line:column of the step, for messages
   Motion motion;
   std::function<std::unique_ptr<DeformationMethod>()> make_method;
 };
-DeformStep read_deform_step(config::Section& section);
 
 // The file stem of step `step` of a motion of `steps` steps: `stem` itself for a single
 // step, `stem` + "_0003" for step 3 of a sequence.

@@ -21,7 +21,6 @@
 #include <string>
 #include <vector>
 
-#include "mixmesh/config/config.hpp"
 #include "mixmesh/mesh/mixed_mesh.hpp"
 
 namespace mixmesh::deform {
@@ -87,13 +86,6 @@ struct Motion {
   bool incremental = false;
   std::string method = "ara";  // "ara" or "idw"
 };
-
-// Reads a motion from a table (a motion file's root, or a [[deform]] step of a
-// generation config); CSV files it names are resolved against the config's folder.
-// Errors name file:line:column. Does not call finish() on `section`, so a caller can
-// read the method's options (the [ara] or [idw] table) from it afterwards;
-// read_deform_setup (deform.hpp) does both for a motion file.
-Motion read_motion(config::Section& section);
 
 // "tx,ty,tz,roll,pitch,yaw" rows (degrees; R = Rz(yaw) Ry(pitch) Rx(roll) about
 // `centre`), with an optional header line.

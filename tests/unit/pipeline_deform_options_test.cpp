@@ -9,6 +9,7 @@
 #include "mixmesh/config/config.hpp"
 #include "mixmesh/core/error.hpp"
 #include "mixmesh/deform/ara.hpp"
+#include "mixmesh/pipeline/deform_options.hpp"
 
 namespace mixmesh::deform {
 namespace {
