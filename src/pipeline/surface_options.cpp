@@ -19,7 +19,9 @@ SurfaceOptions read_surface_options(config::Section& table) {
   if (std::optional<config::Section> wake = table.optional_section("wake")) {
     wake->read("enabled", options.wake.enabled);
     wake->read("length", options.wake.length, config::Bounds::positive());
-    wake->read("first_spacing", options.wake.first_spacing, config::Bounds::non_negative());
+    double first_spacing = 0.0;  // 0 in a config file: the trailing-edge spacing
+    wake->read("first_spacing", first_spacing, config::Bounds::non_negative());
+    if (first_spacing > 0.0) options.wake.first_spacing = first_spacing;
     wake->read("growth", options.wake.growth, config::Bounds::between(1.0, 3.0));
     wake->finish();
   }

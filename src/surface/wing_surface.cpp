@@ -24,7 +24,8 @@ void check_options(const SurfaceOptions& options, bool has_base) {
   }
   if (options.wake.enabled && !(options.wake.length > 0.0)) fail("wake length must be positive");
   if (options.wake.enabled && !(options.wake.growth >= 1.0)) fail("wake growth must be at least 1");
-  if (options.wake.first_spacing < 0.0) fail("wake first_spacing must not be negative");
+  if (options.wake.first_spacing && !(*options.wake.first_spacing > 0.0))
+    fail("wake first_spacing must be > 0");
 }
 
 // Unit-chord node positions of one airfoil: lower surface from the trailing edge to
@@ -187,8 +188,7 @@ void add_wake(const WingDefinition& wing, const SurfaceOptions& options,
     downstream_end = std::max(downstream_end, surface.points[static_cast<std::size_t>(node)].x());
   const double root_chord = wing.stations.front().chord;
   downstream_end += options.wake.length * root_chord;
-  const double wake_spacing =
-      options.wake.first_spacing > 0.0 ? options.wake.first_spacing : options.trailing_edge_spacing;
+  const double wake_spacing = options.wake.first_spacing.value_or(options.trailing_edge_spacing);
   // The cell count follows from geometric growth on the root line; every other line
   // keeps that count and its own first spacing (proportional to its chord).
   const Vector3 root_edge = surface.points[static_cast<std::size_t>(trailing_edge.front())];

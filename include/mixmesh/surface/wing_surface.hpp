@@ -18,6 +18,7 @@
 #pragma once
 
 #include <array>
+#include <optional>
 
 #include "mixmesh/geometry/planform.hpp"
 #include "mixmesh/surface/surface_mesh.hpp"
@@ -27,7 +28,8 @@ namespace mixmesh {
 struct WakeOptions {
   bool enabled = true;
   double length = 10.0;        // in root chords, behind the most downstream trailing edge
-  double first_spacing = 0.0;  // fraction of the local chord; 0: the wing's trailing-edge spacing
+  // Fraction of the local chord; none: the wing's trailing-edge spacing.
+  std::optional<double> first_spacing;
   double growth = 1.2;         // cell-to-cell ratio at the root line
 };
 
