@@ -89,18 +89,15 @@ Motion read_motion(config::Section& section) {
 
 AraOptions read_ara_options(config::Section& section) {
   AraOptions options;
-  std::string predictor = "rotation";
-  section.read_choice("predictor", predictor, {"rotation", "translation"});
-  options.predictor = predictor == "rotation" ? Predictor::rotation : Predictor::translation;
-  std::string smoothing = "rigid_transport";
-  section.read_choice("smoothing", smoothing, {"rigid_transport", "plain"});
-  options.smoothing = smoothing == "plain" ? Smoothing::plain : Smoothing::rigid_transport;
-  std::string solver = "conjugate_gradient";
-  section.read_choice("solver", solver, {"conjugate_gradient", "gauss_seidel"});
-  options.solver = solver == "gauss_seidel" ? Solver::gauss_seidel : Solver::conjugate_gradient;
-  std::string form = "exponential";
-  section.read_choice("blend", form, {"exponential", "linear"});
-  options.blend_form = form == "exponential" ? BlendForm::exponential : BlendForm::linear;
+  section.read_choice("predictor", options.predictor,
+                      {{"rotation", Predictor::rotation}, {"translation", Predictor::translation}});
+  section.read_choice("smoothing", options.smoothing,
+                      {{"rigid_transport", Smoothing::rigid_transport}, {"plain", Smoothing::plain}});
+  section.read_choice(
+      "solver", options.solver,
+      {{"conjugate_gradient", Solver::conjugate_gradient}, {"gauss_seidel", Solver::gauss_seidel}});
+  section.read_choice("blend", options.blend_form,
+                      {{"exponential", BlendForm::exponential}, {"linear", BlendForm::linear}});
   section.read("gamma", options.gamma, config::Bounds::positive());
   section.read("candidates", options.candidates, config::Bounds::between(1, 256));
   section.read("relaxation", options.relaxation, config::Bounds::between(0.0, 1.0));
@@ -115,9 +112,7 @@ AraOptions read_ara_options(config::Section& section) {
 
 IdwOptions read_idw_options(config::Section& section) {
   IdwOptions options;
-  std::string form = "rotation";
-  section.read_choice("form", form, {"rotation", "simple"});
-  options.form = form == "rotation" ? IdwForm::rotation : IdwForm::simple;
+  section.read_choice("form", options.form, {{"rotation", IdwForm::rotation}, {"simple", IdwForm::simple}});
   section.read("exponent", options.exponent, config::Bounds::positive());
   section.read("exact", options.exact);
   section.read("tree_tolerance", options.tree_tolerance, config::Bounds::positive());

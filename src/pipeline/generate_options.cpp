@@ -39,20 +39,17 @@ MarchOptions read_march_options(config::Section& table) {
   table.read("y_plus", spacing.target_y_plus, Bounds::positive());
   table.read("reynolds_number", spacing.reynolds_number, Bounds::positive());
   table.read("reference_length", spacing.reference_length, Bounds::positive());
-  std::string growth_law = "geometric";
-  table.read_choice("growth_law", growth_law, {"geometric", "tanh"});
-  spacing.growth_law = growth_law == "tanh" ? GrowthLaw::tanh : GrowthLaw::geometric;
+  table.read_choice("growth_law", spacing.growth_law,
+                    {{"geometric", GrowthLaw::geometric}, {"tanh", GrowthLaw::tanh}});
   table.read("growth_rate", spacing.growth_rate, Bounds::at_least(1.0));
   double thickness = 0.0;
   table.read("total_thickness", thickness, Bounds::non_negative());
   if (thickness > 0.0) spacing.total_thickness = thickness;
-  std::string method = "smoothed";
-  table.read_choice("method", method, {"smoothed", "normal"});
-  options.method = method == "normal" ? MarchMethod::normal : MarchMethod::smoothed;
+  table.read_choice("method", options.method,
+                    {{"smoothed", MarchMethod::smoothed}, {"normal", MarchMethod::normal}});
   table.read("sweeps", options.sweeps, Bounds::at_least(0));
-  std::string layer_solve = "sweeps";
-  table.read_choice("layer_solve", layer_solve, {"sweeps", "sparse"});
-  options.layer_solve = layer_solve == "sparse" ? LayerSolve::sparse : LayerSolve::sweeps;
+  table.read_choice("layer_solve", options.layer_solve,
+                    {{"sweeps", LayerSolve::sweeps}, {"sparse", LayerSolve::sparse}});
   table.read("layer_tolerance", options.layer_tolerance, Bounds::non_negative());
   table.read("orthogonal_layers", options.orthogonal_layers, Bounds::at_least(0));
   table.read("release_layers", options.release_layers, Bounds::at_least(0));
@@ -70,9 +67,8 @@ MarchOptions read_march_options(config::Section& table) {
 //   diagonal = "shorter"       # or "smallest_node"
 InterfaceOptions read_interface_options(config::Section& table) {
   InterfaceOptions options;
-  std::string diagonal = "shorter";
-  table.read_choice("diagonal", diagonal, {"shorter", "smallest_node"});
-  options.diagonal = diagonal == "smallest_node" ? HullDiagonal::smallest_node : HullDiagonal::shorter;
+  table.read_choice("diagonal", options.diagonal,
+                    {{"shorter", HullDiagonal::shorter}, {"smallest_node", HullDiagonal::smallest_node}});
   table.finish();
   return options;
 }
@@ -91,12 +87,9 @@ InterfaceOptions read_interface_options(config::Section& table) {
 //   affine = "whitening"       # or "inverse" (Wild eq. 15) or "none"
 FarFieldOptions read_farfield_options(config::Section& table) {
   FarFieldOptions options = anisotropic_farfield();
-  std::string shape = "sphere";
-  table.read_choice("shape", shape, {"sphere", "box"});
-  options.shape = shape == "box" ? FarFieldShape::box : FarFieldShape::sphere;
-  std::string sizing = options.sizing == FarFieldSizing::anisotropic ? "anisotropic" : "isotropic";
-  table.read_choice("sizing", sizing, {"anisotropic", "isotropic"});
-  options.sizing = sizing == "isotropic" ? FarFieldSizing::isotropic : FarFieldSizing::anisotropic;
+  table.read_choice("shape", options.shape, {{"sphere", FarFieldShape::sphere}, {"box", FarFieldShape::box}});
+  table.read_choice("sizing", options.sizing,
+                    {{"anisotropic", FarFieldSizing::anisotropic}, {"isotropic", FarFieldSizing::isotropic}});
   table.read("radius", options.radius_in_chords, Bounds::positive());
   table.read("reference_chord", options.reference_chord, Bounds::non_negative());
   table.read("farfield_size", options.farfield_size_in_chords, Bounds::positive());
@@ -107,11 +100,9 @@ FarFieldOptions read_farfield_options(config::Section& table) {
   table.read("precondition", options.precondition);
   if (table.has("sweep"))
     table.read("sweep", options.preconditioning.sweep_degrees, Bounds::between(-80, 80));
-  std::string affine = "whitening";
-  table.read_choice("affine", affine, {"whitening", "inverse", "none"});
-  options.preconditioning.affine = affine == "inverse" ? AffineMap::inverse
-                                   : affine == "none"  ? AffineMap::none
-                                                       : AffineMap::whitening;
+  table.read_choice(
+      "affine", options.preconditioning.affine,
+      {{"whitening", AffineMap::whitening}, {"inverse", AffineMap::inverse}, {"none", AffineMap::none}});
   table.finish();
   return options;
 }

@@ -47,9 +47,7 @@ SurfaceSetup read_surface_setup(config::Section& root) {
       if (!entry.has("file")) entry.fail({}, "[[surface.import]] needs 'file'");
       entry.read_path("file", import.file);
       entry.read("name", import.name);
-      std::string role = "wall";
-      entry.read_choice("role", role, {"wall", "wake"});
-      import.role = role == "wake" ? PatchRole::wake : PatchRole::wall;
+      entry.read_choice("role", import.role, {{"wall", PatchRole::wall}, {"wake", PatchRole::wake}});
       entry.read("flip", import.flip);
       entry.finish();
       setup.imports.push_back(import);

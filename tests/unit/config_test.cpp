@@ -61,6 +61,21 @@ TEST(Config, ReadsTypedValuesAndKeepsDefaults) {
   EXPECT_EQ(options.twist, (std::vector<double>{0.0, -1.5}));
 }
 
+TEST(Config, NamedValuesKeepTheirDefaultAndRejectOtherNames) {
+  enum class Shape { sphere, box };
+  auto read_shape = [](const std::string& text) {
+    const Document document = Document::parse(text, "f.toml");
+    config::Section table = document.root().section("farfield");
+    Shape shape = Shape::box;
+    table.read_choice("shape", shape, {{"sphere", Shape::sphere}, {"box", Shape::box}});
+    return shape;
+  };
+  EXPECT_EQ(read_shape("[farfield]\n"), Shape::box);
+  EXPECT_EQ(read_shape("[farfield]\nshape = \"sphere\"\n"), Shape::sphere);
+  EXPECT_EQ(error_of([&] { read_shape("[farfield]\nshape = \"cube\"\n"); }),
+            "f.toml:2:9: 'farfield.shape' = \"cube\" must be one of: sphere, box");
+}
+
 TEST(Config, IntegerIsAcceptedWhereANumberIsExpected) {
   EXPECT_DOUBLE_EQ(read_wing(Document::parse("[wing]\nroot_chord = 2\n", "a.toml")).root_chord, 2.0);
 }

@@ -14,10 +14,12 @@
 #pragma once
 
 #include <filesystem>
+#include <initializer_list>
 #include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "mixmesh/core/error.hpp"
@@ -57,6 +59,21 @@ class Section {
   void read(std::string_view key, std::vector<std::string>& values);
   // A string that must be one of `choices`.
   void read_choice(std::string_view key, std::string& value, const std::vector<std::string>& choices);
+  // The same for an option with named values: `value` keeps its own as the default
+  // and takes the value of the name the file gives.
+  template <class Value>
+  void read_choice(std::string_view key, Value& value,
+                   std::initializer_list<std::pair<const char*, Value>> choices) {
+    std::string name;
+    std::vector<std::string> names;
+    for (const auto& [choice, meaning] : choices) {
+      names.emplace_back(choice);
+      if (meaning == value) name = choice;
+    }
+    read_choice(key, name, names);
+    for (const auto& [choice, meaning] : choices)
+      if (name == choice) value = meaning;
+  }
   // A path, resolved relative to the folder of the config file.
   void read_path(std::string_view key, std::filesystem::path& value);
 
