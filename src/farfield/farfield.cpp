@@ -193,13 +193,18 @@ farfield_detail::LayerPoints anisotropic_layer_points(const FarFieldInput& input
                                                       const Placement& placement,
                                                       const std::vector<double>& hull_size,
                                                       const FarFieldOptions& options) {
-  FarFieldInput local_input{local.points, local.hull, {}, {}, {}};
+  FarFieldInput local_input{local.points, local.hull, {}, {}, {}, {}};
   for (std::size_t entry = 0; entry < input.metric_nodes.size(); ++entry) {
     const auto found = local.local_of.find(input.metric_nodes[entry]);
     if (found == local.local_of.end()) continue;
     local_input.metric_nodes.push_back(found->second);
     local_input.metrics.push_back(input.metrics[entry]);
   }
+  for (Index node : input.capped_nodes) {
+    const auto found = local.local_of.find(node);
+    if (found != local.local_of.end()) local_input.capped_nodes.push_back(found->second);
+  }
+  std::sort(local_input.capped_nodes.begin(), local_input.capped_nodes.end());
   return farfield_detail::layer_points(local_input, placement.footprint, placement.symmetric, hull_size,
                                        options);
 }

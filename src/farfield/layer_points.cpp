@@ -109,6 +109,19 @@ LayerPoints layer_points(const FarFieldInput& input, const std::vector<std::arra
       neighbours[here].push_back(slot[triangle[static_cast<std::size_t>((corner + 1) % 3)]]);
     }
   }
+  // The unit normals of the hull faces at every node under a cap.
+  std::vector<char> capped(nodes.size(), 0);
+  for (Index node : input.capped_nodes) {
+    const auto found = slot.find(node);
+    if (found != slot.end()) capped[found->second] = 1;
+  }
+  std::vector<std::vector<Vector3>> face_normals(nodes.size());
+  for (const auto& triangle : input.hull) {
+    const Vector3 unit =
+        (at(triangle[1]) - at(triangle[0])).cross(at(triangle[2]) - at(triangle[0])).normalized();
+    for (Index corner : triangle)
+      if (capped[slot[corner]]) face_normals[slot[corner]].push_back(unit);
+  }
   std::vector<char> on_footprint(nodes.size(), 0);
   for (const auto& edge : footprint) on_footprint[slot[edge[0]]] = on_footprint[slot[edge[1]]] = 1;
   for (int pass = 0; pass < 3; ++pass) {
@@ -174,6 +187,13 @@ LayerPoints layer_points(const FarFieldInput& input, const std::vector<std::arra
       Vector3 point = at(nodes[position]) + distance * direction;
       const bool plane = symmetric && on_footprint[position];
       if (plane) point.y() = options.symmetry_y;
+      if (capped[position]) {
+        bool beside_a_face = false;
+        for (const Vector3& face_normal : face_normals[position])
+          beside_a_face = beside_a_face || std::abs(face_normal.dot(point - at(nodes[position]))) <
+                                               options.cap_face_clearance * distance;
+        if (beside_a_face) break;
+      }
       // A column that comes near another part of the hull (concave corners) stops.
       const Kernel::Point_3 query(point.x(), point.y(), point.z());
       if (hull_tree.squared_distance(query) < 0.25 * distance * distance) break;

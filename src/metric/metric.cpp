@@ -3,6 +3,9 @@
 #include <Eigen/Eigenvalues>
 #include <Eigen/LU>
 
+#include <algorithm>
+#include <map>
+#include <set>
 #include <sstream>
 
 #include "mixmesh/core/error.hpp"
@@ -189,6 +192,36 @@ std::vector<Matrix3> node_metrics(const MixedMesh& mesh, const std::vector<Index
     metrics[position] = symmetric_exp(log_sum[position] / weight_sum[position]);
   }
   return metrics;
+}
+
+std::vector<Index> blend_cap_metrics(const MixedMesh& split_mesh,
+                                     const std::vector<std::array<Index, 3>>& hull,
+                                     const std::vector<Index>& nodes, std::vector<Matrix3>& metrics) {
+  auto sorted = [](std::array<Index, 3> triangle) {
+    std::sort(triangle.begin(), triangle.end());
+    return triangle;
+  };
+  std::set<std::array<Index, 3>> hull_faces;
+  for (const auto& triangle : hull) hull_faces.insert(sorted(triangle));
+  std::map<Index, std::vector<Matrix3>> caps_at;  // base corner -> metrics of its caps
+  for (std::size_t cell = 0; cell < split_mesh.cell_count(CellType::pyramid); ++cell) {
+    const Index* pyramid = split_mesh.cell(CellType::pyramid, cell);
+    bool cap = false;
+    for (int side = 0; side < 4 && !cap; ++side)
+      cap = hull_faces.count(sorted({pyramid[side], pyramid[(side + 1) % 4], pyramid[4]})) > 0;
+    if (!cap) continue;
+    const Matrix3 metric = cell_metric(CellType::pyramid, split_mesh.points, pyramid);
+    for (int corner = 0; corner < 4; ++corner) caps_at[pyramid[corner]].push_back(metric);
+  }
+  std::vector<Index> changed;
+  for (std::size_t position = 0; position < nodes.size(); ++position) {
+    const auto caps = caps_at.find(nodes[position]);
+    if (caps == caps_at.end()) continue;
+    metrics[position] = log_euclidean_mean({metrics[position], log_euclidean_mean(caps->second)});
+    changed.push_back(nodes[position]);
+  }
+  std::sort(changed.begin(), changed.end());
+  return changed;
 }
 
 }  // namespace mixmesh

@@ -209,14 +209,14 @@ InterfaceResult interface_stage(const BoundaryLayer& layers, const GenerateOptio
 }
 
 // The metrics of the hull's nodes, for the anisotropic far field.
-void metric_stage(const BoundaryLayer& layers, const InterfaceResult& interface, GenerateReport& report,
-                  const Log& log, FarFieldInput& farfield_input) {
+void metric_stage(const BoundaryLayer& layers, const InterfaceResult& interface, bool cap_metrics,
+                  GenerateReport& report, const Log& log, FarFieldInput& farfield_input) {
   run_stage("metric", report, [&] {
     std::set<Index> hull_nodes;
     for (const auto& triangle : interface.hull) hull_nodes.insert(triangle.begin(), triangle.end());
     // Nodes of the layers take the metrics of the layer cells before the split (the
-    // hexahedra's own shape); points the split added (cap apexes) take those of the
-    // cells around them after it.
+    // hexahedra's own shape), blended with their caps' where a cap stands on them;
+    // points the split added (cap apexes) take those of the cells around them after it.
     const Index layer_points = static_cast<Index>(layers.mesh.points.size());
     std::vector<Index> layer_nodes, added_nodes;
     for (Index node : hull_nodes) (node < layer_points ? layer_nodes : added_nodes).push_back(node);
@@ -224,6 +224,9 @@ void metric_stage(const BoundaryLayer& layers, const InterfaceResult& interface,
     farfield_input.metric_nodes.insert(farfield_input.metric_nodes.end(), added_nodes.begin(),
                                        added_nodes.end());
     farfield_input.metrics = node_metrics(layers.mesh, layer_nodes);
+    if (cap_metrics)
+      farfield_input.capped_nodes =
+          blend_cap_metrics(interface.mesh, interface.hull, layer_nodes, farfield_input.metrics);
     const std::vector<Matrix3> added_metrics = node_metrics(interface.mesh, added_nodes);
     farfield_input.metrics.insert(farfield_input.metrics.end(), added_metrics.begin(), added_metrics.end());
     return 0;
@@ -312,7 +315,8 @@ HullAttempts grow_to_farfield(const SurfaceMesh& surface, const GenerateOptions&
     FarFieldInput& farfield_input = attempts.farfield_input;
     farfield_input = FarFieldInput();
     if (options.farfield.sizing == FarFieldSizing::anisotropic)
-      metric_stage(attempts.layers, attempts.interface, report, log, farfield_input);
+      metric_stage(attempts.layers, attempts.interface, options.farfield.cap_metrics, report, log,
+                   farfield_input);
     farfield_input.points = attempts.interface.mesh.points;
     farfield_input.holes = body_points(surface);
     farfield_input.hull = attempts.interface.hull;

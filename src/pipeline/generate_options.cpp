@@ -83,6 +83,7 @@ InterfaceOptions read_interface_options(config::Section& table) {
 //   radius_edge_ratio = 1.5    # TetGen -q
 //   layer_growth = 1.25, maximum_layers = 1
 //   precondition = false       # see docs/farfield.md: true can invert slivers
+//   cap_metrics = true         # nodes under the wake's caps take the caps' metric too
 //   sweep = nan                # degrees; absent: estimated from the hull
 //   affine = "whitening"       # or "inverse" (Wild eq. 15) or "none"
 FarFieldOptions read_farfield_options(config::Section& table) {
@@ -98,6 +99,7 @@ FarFieldOptions read_farfield_options(config::Section& table) {
   table.read("layer_growth", options.layer_growth, Bounds::at_least(1.0));
   table.read("maximum_layers", options.maximum_layers, Bounds::at_least(0));
   table.read("precondition", options.precondition);
+  table.read("cap_metrics", options.cap_metrics);
   if (table.has("sweep"))
     table.read("sweep", options.preconditioning.sweep_degrees, Bounds::between(-80, 80));
   table.read_choice(

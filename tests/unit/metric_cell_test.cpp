@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "mixmesh/core/error.hpp"
+#include "mixmesh/mesh/cell_geometry.hpp"
 #include "mixmesh/metric/metric.hpp"
 #include "reference_cells.hpp"
 
@@ -165,4 +166,39 @@ TEST(NodeMetrics, FlatCellIsReportedByName) {
   } catch (const Error& error) {
     EXPECT_NE(std::string(error.what()).find("hexahedron 0"), std::string::npos) << error.what();
   }
+}
+
+// A wake-like layer cell, 1 × 1 × 0.05, with a cap 0.2 high on its top face: the tall
+// pyramid's side faces are the hull. Its base corners take a metric between the flat
+// cell's and the cap's; a node under no cap keeps its own.
+TEST(NodeMetrics, CapCornersBlendTheirCapsMetricAndOthersKeepTheirs) {
+  MixedMesh layer = reference::single_cell(CellType::hexahedron);
+  for (Vector3& point : layer.points) point.z() *= 0.05;
+  MixedMesh split = layer;
+  split.points.push_back({0.5, 0.5, 0.25});
+  const Index apex = 8;
+  const Index cap[5] = {4, 5, 6, 7, apex};
+  split.add_cell(CellType::pyramid, cap);
+  ASSERT_GT(signed_volume(CellType::pyramid, split.points, cap), 0.0);
+  const std::vector<std::array<Index, 3>> hull = {{4, 5, apex}, {5, 6, apex}, {6, 7, apex}, {7, 4, apex}};
+  const std::vector<Index> nodes = {0, 4, 5, 6, 7};
+  const std::vector<Matrix3> own = node_metrics(layer, nodes);
+  std::vector<Matrix3> blended = own;
+  EXPECT_EQ(blend_cap_metrics(split, hull, nodes, blended), (std::vector<Index>{4, 5, 6, 7}));
+  EXPECT_TRUE(blended[0].isApprox(own[0]));  // node 0 is under no cap
+
+  const Matrix3 cap_metric = cell_metric(CellType::pyramid, split.points, cap);
+  const Vector3 side = split.points[apex] - split.points[4];
+  const double in_cell = metric_length(own[1], side);
+  const double in_cap = metric_length(cap_metric, side);
+  const double in_blend = metric_length(blended[1], side);
+  EXPECT_GT(in_cell, 2.0 * in_cap);  // the flat cell's metric takes the cap's side for long
+  EXPECT_LT(in_blend, in_cell);
+  EXPECT_GT(in_blend, in_cap);
+
+  // Without the cap's faces in the hull (a split, not a cap) nothing changes.
+  std::vector<Matrix3> untouched = own;
+  EXPECT_TRUE(blend_cap_metrics(split, {}, nodes, untouched).empty());
+  for (std::size_t position = 0; position < nodes.size(); ++position)
+    EXPECT_TRUE(untouched[position].isApprox(own[position]));
 }

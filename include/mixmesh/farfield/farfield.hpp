@@ -84,6 +84,13 @@ struct FarFieldOptions {
   // Points of the exact pass closer to the hull surface than this fraction of their
   // distance to the nearest hull node are dropped (they would make flat tetrahedra).
   double hull_clearance = 0.2;
+  // Hull nodes under a cap (FarFieldInput::capped_nodes) carry their caps' metric, set
+  // by generate's metric stage; false: the layer cells' alone, as before caps counted.
+  bool cap_metrics = true;
+  // A column of a capped node stops where its point would lie within this fraction of
+  // its height of the plane of one of the node's hull faces: beside the steep long face
+  // of a cap over a narrow quad it would make a flat tetrahedron with that face.
+  double cap_face_clearance = 0.2;
   // Preconditioning of the point set before TetGen (method.md §5; shear + whitening
   // when on). The quality pass runs in the mapped space; where the map's rounding
   // leaves tetrahedra flat once mapped back (coplanar boundary parts), and always for
@@ -113,6 +120,9 @@ struct FarFieldInput {
   // Metrics of hull nodes (parallel lists); required for anisotropic sizing.
   std::vector<Index> metric_nodes;
   std::vector<Matrix3> metrics;
+  // Hull nodes at the base of a cap (sorted): the cap's apex stands over them, and a
+  // column of their own would run up beside the cap's steep faces.
+  std::vector<Index> capped_nodes;
   // Points inside the body (inside the hull, not in the far field), which TetGen
   // leaves empty. When none is given, a point just behind the largest hull triangle.
   std::vector<Vector3> holes;

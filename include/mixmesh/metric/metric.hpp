@@ -12,6 +12,8 @@
 //                       the cells around it
 #pragma once
 
+#include <array>
+
 #include <Eigen/Core>
 
 #include <cmath>
@@ -65,5 +67,15 @@ struct NodeMetricOptions {
 // metric is not positive definite (naming the cell).
 std::vector<Matrix3> node_metrics(const MixedMesh& mesh, const std::vector<Index>& nodes,
                                   const NodeMetricOptions& options = {});
+
+// Where the interface capped a cell instead of splitting it, the hull is the side
+// faces of a pyramid standing on the cell's outer quad, and the tetrahedra on them
+// stand on the cap, not on the flat cell below. So the metric of each of `nodes` that
+// is a base corner of such a cap (a pyramid of `split_mesh` with a face in `hull`)
+// becomes the log-Euclidean mean of its own metric (`metrics`, from the layer cells)
+// and the mean metric of its caps. Returns the nodes that changed, sorted.
+std::vector<Index> blend_cap_metrics(const MixedMesh& split_mesh,
+                                     const std::vector<std::array<Index, 3>>& hull,
+                                     const std::vector<Index>& nodes, std::vector<Matrix3>& metrics);
 
 }  // namespace mixmesh
