@@ -61,9 +61,10 @@ using Tree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<do
 // than the wing's 8,838). So every boundary is first searched approximately for one
 // face, nanoflann accepting a centre within 1 + `approximate_slack` of the nearest,
 // and the boundaries whose face lies within `exact_range` times the nearest distance
-// are searched again, exactly and for `candidates` faces as before. Those carry the weight of the blend (eq.
-// 2, 11): beyond three times the nearest distance a boundary's share is under 6 % with γ = 4, and there only
-// its distance, not its face's motion, is approximate.
+// are searched again, exactly and for `candidates` faces as before. Those carry the
+// weight of the blend (eq. 2, 11): beyond three times the nearest distance a
+// boundary's share is under 6 % with γ = 4, and there only its distance, not its
+// face's motion, is approximate.
 constexpr float approximate_slack = 0.5f;
 constexpr double exact_range = 3.0;
 

@@ -204,7 +204,6 @@ farfield_detail::LayerPoints anisotropic_layer_points(const FarFieldInput& input
     const auto found = local.local_of.find(node);
     if (found != local.local_of.end()) local_input.capped_nodes.push_back(found->second);
   }
-  std::sort(local_input.capped_nodes.begin(), local_input.capped_nodes.end());
   return farfield_detail::layer_points(local_input, placement.footprint, placement.symmetric, hull_size,
                                        options);
 }

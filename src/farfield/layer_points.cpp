@@ -101,15 +101,7 @@ LayerPoints layer_points(const FarFieldInput& input, const std::vector<std::arra
   auto at = [&](Index node) -> const Vector3& { return input.points[static_cast<std::size_t>(node)]; };
   std::vector<Vector3> normal(nodes.size(), Vector3::Zero());
   std::vector<std::vector<std::size_t>> neighbours(nodes.size());
-  for (const auto& triangle : input.hull) {
-    const Vector3 area = 0.5 * (at(triangle[1]) - at(triangle[0])).cross(at(triangle[2]) - at(triangle[0]));
-    for (int corner = 0; corner < 3; ++corner) {
-      const std::size_t here = slot[triangle[static_cast<std::size_t>(corner)]];
-      normal[here] += area;
-      neighbours[here].push_back(slot[triangle[static_cast<std::size_t>((corner + 1) % 3)]]);
-    }
-  }
-  // The unit normals of the hull faces at every node under a cap.
+  // Nodes under a cap also keep the unit normals of their hull faces.
   std::vector<char> capped(nodes.size(), 0);
   for (Index node : input.capped_nodes) {
     const auto found = slot.find(node);
@@ -117,10 +109,13 @@ LayerPoints layer_points(const FarFieldInput& input, const std::vector<std::arra
   }
   std::vector<std::vector<Vector3>> face_normals(nodes.size());
   for (const auto& triangle : input.hull) {
-    const Vector3 unit =
-        (at(triangle[1]) - at(triangle[0])).cross(at(triangle[2]) - at(triangle[0])).normalized();
-    for (Index corner : triangle)
-      if (capped[slot[corner]]) face_normals[slot[corner]].push_back(unit);
+    const Vector3 area = 0.5 * (at(triangle[1]) - at(triangle[0])).cross(at(triangle[2]) - at(triangle[0]));
+    for (int corner = 0; corner < 3; ++corner) {
+      const std::size_t here = slot[triangle[static_cast<std::size_t>(corner)]];
+      normal[here] += area;
+      neighbours[here].push_back(slot[triangle[static_cast<std::size_t>((corner + 1) % 3)]]);
+      if (capped[here]) face_normals[here].push_back(area.normalized());
+    }
   }
   std::vector<char> on_footprint(nodes.size(), 0);
   for (const auto& edge : footprint) on_footprint[slot[edge[0]]] = on_footprint[slot[edge[1]]] = 1;

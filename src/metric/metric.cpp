@@ -10,6 +10,7 @@
 
 #include "mixmesh/core/error.hpp"
 #include "mixmesh/mesh/cell_geometry.hpp"
+#include "mixmesh/mesh/face_connectivity.hpp"
 
 namespace mixmesh {
 
@@ -197,18 +198,16 @@ std::vector<Matrix3> node_metrics(const MixedMesh& mesh, const std::vector<Index
 std::vector<Index> blend_cap_metrics(const MixedMesh& split_mesh,
                                      const std::vector<std::array<Index, 3>>& hull,
                                      const std::vector<Index>& nodes, std::vector<Matrix3>& metrics) {
-  auto sorted = [](std::array<Index, 3> triangle) {
-    std::sort(triangle.begin(), triangle.end());
-    return triangle;
-  };
-  std::set<std::array<Index, 3>> hull_faces;
-  for (const auto& triangle : hull) hull_faces.insert(sorted(triangle));
+  std::set<std::array<Index, 4>> hull_faces;
+  for (const auto& triangle : hull) hull_faces.insert(sorted_face_key(triangle.data(), 3));
   std::map<Index, std::vector<Matrix3>> caps_at;  // base corner -> metrics of its caps
   for (std::size_t cell = 0; cell < split_mesh.cell_count(CellType::pyramid); ++cell) {
     const Index* pyramid = split_mesh.cell(CellType::pyramid, cell);
     bool cap = false;
-    for (int side = 0; side < 4 && !cap; ++side)
-      cap = hull_faces.count(sorted({pyramid[side], pyramid[(side + 1) % 4], pyramid[4]})) > 0;
+    for (int side = 0; side < 4 && !cap; ++side) {
+      const Index face[3] = {pyramid[side], pyramid[(side + 1) % 4], pyramid[4]};
+      cap = hull_faces.count(sorted_face_key(face, 3)) > 0;
+    }
     if (!cap) continue;
     const Matrix3 metric = cell_metric(CellType::pyramid, split_mesh.points, pyramid);
     for (int corner = 0; corner < 4; ++corner) caps_at[pyramid[corner]].push_back(metric);

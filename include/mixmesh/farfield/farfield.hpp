@@ -120,7 +120,7 @@ struct FarFieldInput {
   // Metrics of hull nodes (parallel lists); required for anisotropic sizing.
   std::vector<Index> metric_nodes;
   std::vector<Matrix3> metrics;
-  // Hull nodes at the base of a cap (sorted): the cap's apex stands over them, and a
+  // Hull nodes at the base of a cap: the cap's apex stands over them, and a
   // column of their own would run up beside the cap's steep faces.
   std::vector<Index> capped_nodes;
   // Points inside the body (inside the hull, not in the far field), which TetGen
