@@ -470,11 +470,23 @@ void add_boundary_faces(const std::vector<Index>& global, const std::vector<Tria
 MetricLengthReport hull_metric_lengths(const MixedMesh& mesh, const std::vector<std::array<Index, 3>>& hull,
                                        const std::vector<Index>& metric_nodes,
                                        const std::vector<Matrix3>& metrics) {
-  std::map<Index, const Matrix3*> metric_of;
+  // Lookups by point number: the mesh has ten times as many tetrahedron faces as the
+  // hull has triangles, and most are rejected by their first node.
+  std::vector<const Matrix3*> metric_of(mesh.points.size(), nullptr);
   for (std::size_t entry = 0; entry < metric_nodes.size(); ++entry)
-    metric_of[metric_nodes[entry]] = &metrics[entry];
-  std::map<FaceKey, std::size_t> hull_face;
-  for (std::size_t face = 0; face < hull.size(); ++face) hull_face[triangle_key(hull[face])] = face;
+    metric_of[static_cast<std::size_t>(metric_nodes[entry])] = &metrics[entry];
+  std::vector<char> on_hull(mesh.points.size(), 0);
+  std::vector<FaceKey> hull_keys;
+  for (const auto& triangle : hull) {
+    hull_keys.push_back(triangle_key(triangle));
+    for (Index node : triangle) on_hull[static_cast<std::size_t>(node)] = 1;
+  }
+  std::sort(hull_keys.begin(), hull_keys.end());
+  auto is_hull_face = [&](const std::array<Index, 3>& face) {
+    for (Index node : face)
+      if (!on_hull[static_cast<std::size_t>(node)]) return false;
+    return std::binary_search(hull_keys.begin(), hull_keys.end(), triangle_key(face));
+  };
 
   std::vector<double> lengths;
   const std::size_t count = mesh.cell_count(CellType::tetrahedron);
@@ -482,13 +494,14 @@ MetricLengthReport hull_metric_lengths(const MixedMesh& mesh, const std::vector<
     const Index* nodes = mesh.cell(CellType::tetrahedron, cell);
     for (int face = 0; face < tetrahedron_descriptor.face_count; ++face) {
       const LocalFace& local = tetrahedron_descriptor.faces[static_cast<std::size_t>(face)];
-      const FaceKey key = triangle_key({nodes[local.nodes[0]], nodes[local.nodes[1]], nodes[local.nodes[2]]});
-      if (!hull_face.count(key)) continue;
+      const std::array<Index, 3> corners = {nodes[local.nodes[0]], nodes[local.nodes[1]],
+                                            nodes[local.nodes[2]]};
+      if (!is_hull_face(corners)) continue;
+      const FaceKey key = triangle_key(corners);
       std::vector<Matrix3> face_metrics;
-      for (Index node : {key[0], key[1], key[2]}) {
-        const auto found = metric_of.find(node);
-        if (found != metric_of.end()) face_metrics.push_back(*found->second);
-      }
+      for (Index node : {key[0], key[1], key[2]})
+        if (const Matrix3* metric = metric_of[static_cast<std::size_t>(node)])
+          face_metrics.push_back(*metric);
       if (face_metrics.empty()) continue;
       const Matrix3 metric = log_euclidean_mean(face_metrics);
       for (int edge_number = 0; edge_number < tetrahedron_descriptor.edge_count; ++edge_number) {

@@ -5,6 +5,7 @@
 #include <CGAL/AABB_triangle_primitive.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
+#include <tbb/parallel_for.h>
 #include <Eigen/Eigenvalues>
 #include <nanoflann.hpp>
 
@@ -76,6 +77,19 @@ std::vector<Triangle3> hull_triangles(const std::vector<Vector3>& points, const 
   return triangles;
 }
 
+// The candidates `keep` accepts, in their order; `keep` is called in parallel.
+template <typename Keep>
+std::vector<Vector3> kept_in_order(const std::vector<Vector3>& candidates, const Keep& keep) {
+  std::vector<char> kept_flag(candidates.size(), 0);
+  tbb::parallel_for(std::size_t{0}, candidates.size(), [&](std::size_t candidate) {
+    kept_flag[candidate] = keep(candidates[candidate]) ? 1 : 0;
+  });
+  std::vector<Vector3> kept;
+  for (std::size_t candidate = 0; candidate < candidates.size(); ++candidate)
+    if (kept_flag[candidate]) kept.push_back(candidates[candidate]);
+  return kept;
+}
+
 }  // namespace
 
 LayerPoints layer_points(const FarFieldInput& input, const std::vector<std::array<Index, 2>>& footprint,
@@ -131,7 +145,10 @@ LayerPoints layer_points(const FarFieldInput& input, const std::vector<std::arra
   }
 
   const std::vector<Triangle3> triangles = hull_triangles(input.points, input.hull);
-  const HullTree hull_tree(triangles.begin(), triangles.end());
+  HullTree hull_tree(triangles.begin(), triangles.end());
+  // Built before the parallel queries below rather than lazily by the first of them.
+  hull_tree.build();
+  hull_tree.accelerate_distance_queries();
 
   // Longest hull edge at each node and the body's thickness below it (along −n to the
   // first hull triangle not incident to the node; infinite when the ray leaves the hull).
@@ -140,7 +157,7 @@ LayerPoints layer_points(const FarFieldInput& input, const std::vector<std::arra
   for (std::size_t position = 0; position < nodes.size(); ++position)
     for (std::size_t other : neighbours[position])
       longest[position] = std::max(longest[position], (at(nodes[position]) - at(nodes[other])).norm());
-  for (std::size_t position = 0; position < nodes.size(); ++position) {
+  tbb::parallel_for(std::size_t{0}, nodes.size(), [&](std::size_t position) {
     const Vector3& origin = at(nodes[position]);
     const Index node = nodes[position];
     const Kernel::Ray_3 ray(
@@ -150,10 +167,10 @@ LayerPoints layer_points(const FarFieldInput& input, const std::vector<std::arra
       const auto& corners = input.hull[static_cast<std::size_t>(face - triangles.begin())];
       return std::find(corners.begin(), corners.end(), node) != corners.end();
     });
-    if (!hit) continue;
+    if (!hit) return;
     if (const Kernel::Point_3* point = boost::get<Kernel::Point_3>(&hit->first))
       thickness[position] = (Vector3(point->x(), point->y(), point->z()) - origin).norm();
-  }
+  });
 
   // Columns: normal spacing from the metric (1/√(nᵀ M n)), growing until it reaches
   // the isotropic size the far field has at the node, where the isotropic grading takes
@@ -161,8 +178,8 @@ LayerPoints layer_points(const FarFieldInput& input, const std::vector<std::arra
   // its short side but ten times as long has isotropic tetrahedra ten times too tall
   // above it, and on the ONERA M6 a fifth of the hull nodes, along the leading and
   // trailing edges, got no point that way.)
-  std::vector<Candidate> candidates;
-  for (std::size_t position = 0; position < nodes.size(); ++position) {
+  std::vector<std::vector<Candidate>> columns(nodes.size());  // filled in parallel, joined in node order
+  tbb::parallel_for(std::size_t{0}, nodes.size(), [&](std::size_t position) {
     const Vector3& direction = normal[position];
     const Matrix3& node_metric = *metric[position];
     const double isotropic = isotropic_size[static_cast<std::size_t>(nodes[position])];
@@ -193,9 +210,12 @@ LayerPoints layer_points(const FarFieldInput& input, const std::vector<std::arra
       const Kernel::Point_3 query(point.x(), point.y(), point.z());
       if (hull_tree.squared_distance(query) < 0.25 * distance * distance) break;
       if (symmetric && !plane && point.y() < options.symmetry_y + 0.5 * spacing) break;
-      candidates.push_back({point, spacing, distance, plane});
+      columns[position].push_back({point, spacing, distance, plane});
     }
-  }
+  });
+  std::vector<Candidate> candidates;
+  for (const std::vector<Candidate>& column : columns)
+    candidates.insert(candidates.end(), column.begin(), column.end());
 
   // Greedy thinning, smallest spacing first: a candidate removes the later ones within
   // minimum_metric_distance of its own spacing.
@@ -236,12 +256,10 @@ LayerPoints layer_points(const FarFieldInput& input, const std::vector<std::arra
 std::vector<Vector3> points_beyond(const std::vector<Vector3>& candidates, const std::vector<Vector3>& near,
                                    const SizeField& size, double ratio) {
   const NearestPoint nearest(near);
-  std::vector<Vector3> kept;
-  for (const Vector3& candidate : candidates) {
+  return kept_in_order(candidates, [&](const Vector3& candidate) {
     const double limit = ratio * size(candidate);
-    if (nearest.squared_distance(candidate) > limit * limit) kept.push_back(candidate);
-  }
-  return kept;
+    return nearest.squared_distance(candidate) > limit * limit;
+  });
 }
 
 std::vector<Vector3> points_off_hull(const std::vector<Vector3>& candidates,
@@ -256,16 +274,16 @@ std::vector<Vector3> points_off_hull(const std::vector<Vector3>& candidates,
         nodes.push_back(points[static_cast<std::size_t>(node)]);
       }
   const std::vector<Triangle3> triangles = hull_triangles(points, hull);
-  const HullTree hull_tree(triangles.begin(), triangles.end());
+  HullTree hull_tree(triangles.begin(), triangles.end());
+  hull_tree.build();
+  hull_tree.accelerate_distance_queries();
   const NearestPoint nearest(std::move(nodes));
-  std::vector<Vector3> kept;
-  for (const Vector3& candidate : candidates) {
+  return kept_in_order(candidates, [&](const Vector3& candidate) {
     const double node_squared = nearest.squared_distance(candidate);
     const double surface_squared =
         hull_tree.squared_distance(Kernel::Point_3(candidate.x(), candidate.y(), candidate.z()));
-    if (surface_squared >= ratio * ratio * node_squared) kept.push_back(candidate);
-  }
-  return kept;
+    return surface_squared >= ratio * ratio * node_squared;
+  });
 }
 
 }  // namespace mixmesh::farfield_detail

@@ -66,12 +66,15 @@ class SliverRemoval {
   std::size_t pass(SliverReport& report) {
     const double target = 180.0 - options_.target_dihedral_degrees;
     std::vector<std::pair<double, int>> work;
-    for (std::size_t t = 0; t < complex_.size(); ++t)
-      if (complex_.alive(static_cast<int>(t))) {
-        const double q = quality(complex_, static_cast<int>(t));
-        if (q < target) work.push_back({q, static_cast<int>(t)});
-      }
+    for (int t : candidates()) {
+      const double q = quality(complex_, t);
+      if (q < target) work.push_back({q, t});
+    }
     std::sort(work.begin(), work.end());
+    previous_work_.clear();
+    for (const auto& entry : work) previous_work_.push_back(entry.second);
+    scanned_size_ = complex_.size();
+    moved_points_.clear();
     std::size_t done = 0;
     for (const auto& [q, t] : work) {
       if (!complex_.alive(t) || quality(complex_, t) >= target) continue;
@@ -125,9 +128,35 @@ class SliverRemoval {
     if (!best_ || change.preferred_to(*best_)) best_ = std::move(change);
   }
 
+  // The living tetrahedra that may lie above the target: all of them in the first pass;
+  // after it only those whose shape may have changed (added since the last scan, or
+  // round a moved point) and those left above the target by the last pass, since a
+  // tetrahedron's quality depends on its own points alone. The same set as a full scan.
+  std::vector<int> candidates() const {
+    std::vector<int> result;
+    if (!scanned_size_) {
+      for (std::size_t t = 0; t < complex_.size(); ++t)
+        if (complex_.alive(static_cast<int>(t))) result.push_back(static_cast<int>(t));
+      return result;
+    }
+    result = previous_work_;
+    for (std::size_t t = *scanned_size_; t < complex_.size(); ++t) result.push_back(static_cast<int>(t));
+    for (Index point : moved_points_) {
+      const std::vector<int>& around = complex_.around(point);
+      result.insert(result.end(), around.begin(), around.end());
+    }
+    std::sort(result.begin(), result.end());
+    result.erase(std::unique(result.begin(), result.end()), result.end());
+    result.erase(std::remove_if(result.begin(), result.end(), [&](int t) { return !complex_.alive(t); }),
+                 result.end());
+    return result;
+  }
+
   void apply(const Change& change, SliverReport& report) {
-    if (change.moved_point >= 0)
+    if (change.moved_point >= 0) {
       complex_.points()[static_cast<std::size_t>(change.moved_point)] = change.moved_to;
+      moved_points_.push_back(change.moved_point);
+    }
     const Index added = change.new_point ? complex_.add_point(*change.new_point) : -1;
     for (int cell : change.removed) complex_.remove(cell);
     for (std::size_t k = 0; k < change.added.size(); ++k) {
@@ -528,6 +557,10 @@ class SliverRemoval {
 
   TetrahedronComplex complex_;
   SliverOptions options_;
+  // What the next pass needs to find the tetrahedra above the target (candidates()).
+  std::optional<std::size_t> scanned_size_;
+  std::vector<int> previous_work_;
+  std::vector<Index> moved_points_;
   std::vector<Index> apexes_;
   std::vector<int> ring_;
   std::optional<Change> best_;
