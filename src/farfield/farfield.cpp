@@ -219,6 +219,7 @@ farfield_detail::TetgenInput tetgen_input(const FarFieldInput& input, const Loca
   const std::vector<Triangle>& hull = local.hull;
   farfield_detail::TetgenInput tetgen;
   tetgen.radius_edge_ratio = options.radius_edge_ratio;
+  tetgen.flip_dihedral = options.flip_dihedral;
   tetgen.points = points;
   for (std::size_t node = 0; node < points.size(); ++node)
     tetgen.sizes.push_back(node < hull_point_count ? hull_size[node] : size(points[node]));

@@ -53,17 +53,19 @@ void fill(tetgenio& io, const TetgenInput& input, bool with_sizes) {
       io.holelist[3 * hole + static_cast<std::size_t>(axis)] = input.holes[hole](axis);
 }
 
-// `sliver_flips`: without -q TetGen's parser raises its flip bounds to 179° (only
-// nearly flat tetrahedra are flipped); these restore the -q bounds, so flips remove
-// slivers (largest dihedral above 165°) without refining anything.
-void run(const std::string& switches, tetgenio& in, tetgenio& out, bool sliver_flips = false) {
+// `flip_dihedral` (degrees, 0: TetGen's own bounds): the largest dihedral angle above
+// which TetGen's optimisation flips a tetrahedron. Without -q TetGen's parser raises
+// its flip bounds to 179° (only nearly flat tetrahedra are flipped); the bound and the
+// -q smoothing and splitting bounds are set again, so flips remove slivers without
+// refining anything.
+void run(const std::string& switches, tetgenio& in, tetgenio& out, double flip_dihedral = 0.0) {
   tetgenbehavior behaviour;
   std::vector<char> text(switches.begin(), switches.end());
   text.push_back('\0');
   if (!behaviour.parse_commandline(text.data()))
     throw Error("farfield: TetGen rejected the switches " + switches);
-  if (sliver_flips) {
-    behaviour.optmaxdihedral = 165.0;
+  if (flip_dihedral > 0.0) {
+    behaviour.optmaxdihedral = flip_dihedral;
     behaviour.optminsmtdihed = 179.0;
     behaviour.optminslidihed = 179.0;
   }
@@ -110,7 +112,7 @@ TetgenOutput tetrahedralise(const TetgenInput& input) {
   if (input.quality) switches << "q" << input.radius_edge_ratio << (with_sizes ? "m" : "");
   switches << "JzQ";
   try {
-    run(switches.str(), in, out, !input.quality);
+    run(switches.str(), in, out, input.flip_dihedral);
   } catch (int code) {
     switch (code) {
       case 1:

@@ -66,6 +66,10 @@ struct FarFieldOptions {
   double farfield_size_in_chords = 2.0;               // edge length on the outer boundary
   double size_gradient = 0.25;        // size grows by this much per unit distance from the hull
   double radius_edge_ratio = 1.5;     // TetGen -q bound
+  // TetGen's flips after each pass act on tetrahedra whose largest dihedral angle is
+  // above this (TetGen's own -q default is 165°). Flips are cheaper than the sliver
+  // pass's weighed operations, which then start from fewer slivers (docs/farfield.md).
+  double flip_dihedral = 150.0;
   double symmetry_y = 0.0;            // the symmetry plane of an open hull
   double symmetry_tolerance = 1e-9;   // × chord: how far off the plane a footprint node may be
   double plane_minimum_angle = 25.0;  // degrees, quality bound of the symmetry-plane triangles
