@@ -184,12 +184,17 @@ LayerPoints layer_points(const FarFieldInput& input, const std::vector<std::arra
     const Matrix3& node_metric = *metric[position];
     const double isotropic = isotropic_size[static_cast<std::size_t>(nodes[position])];
     // Over a thin part of the body (trailing edge, the wake's ends, the tip) a sphere
-    // through a hull edge of length L cannot bulge far into the body: it rises about
-    // L²/(8τ) above the hull, τ the thickness. A point lower than that lies in every
-    // sphere through the edge, the edge is no longer Delaunay and TetGen must recover it
-    // with Steiner points that it then fails to remove under -Y. Such points are left out.
+    // through a hull edge of length L cannot bulge far into the body: one through the
+    // edge's ends whose deepest point stays within the thickness τ has its centre
+    // d = (L²/4 − τ²)/(2τ) = L²/(8τ) − τ/2 above the hull, and a point over an end of
+    // the edge lower than 2d lies inside it. The edge is then no longer Delaunay and
+    // TetGen must recover it with Steiner points that it fails to remove under -Y.
+    // Points lower than edge_protection × d are left out (TetGen recovers the few edges
+    // the higher ones cost). Where the edge's diametral sphere fits in the body (L/2 ≤ τ:
+    // the leading edge, most of the chord) d ≤ 0 and nothing is.
     const double protected_height =
-        options.edge_protection * longest[position] * longest[position] / (8.0 * thickness[position]);
+        options.edge_protection *
+        std::max(0.0, longest[position] * longest[position] / (8.0 * thickness[position]) - 0.5 * thickness[position]);
     double spacing = 1.0 / std::sqrt(direction.dot(node_metric * direction));
     double distance = 0.0;
     for (int layer = 0; layer < options.maximum_layers && spacing < isotropic;

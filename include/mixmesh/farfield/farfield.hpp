@@ -81,9 +81,9 @@ struct FarFieldOptions {
   // docs/farfield.md, "How many layers").
   int maximum_layers = 1;
   double minimum_metric_distance = 0.6;  // inserted points closer than this (metric) are dropped
-  // Layer points lower than edge_protection × L²/(8τ) over the hull (L the longest hull
-  // edge at the node, τ the body's thickness below it) are dropped: they would make
-  // hull edges non-Delaunay over thin parts of the body (see docs/farfield.md).
+  // Layer points lower than edge_protection × (L²/(8τ) − τ/2) over the hull (L the
+  // longest hull edge at the node, τ the body's thickness below it) are dropped: they
+  // would make hull edges non-Delaunay over thin parts of the body (docs/farfield.md).
   double edge_protection = 0.25;
   // Points of the exact pass closer to the hull surface than this fraction of their
   // distance to the nearest hull node are dropped (they would make flat tetrahedra).
