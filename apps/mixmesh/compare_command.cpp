@@ -114,6 +114,7 @@ void add_compare_command(CLI::App& application) {
       if (row.key != "hybrid" && has_hybrid)
         std::cout << row.label << ": " << number(100.0 * point_ratio_to_hybrid(row, rows))
                   << " % of the hybrid's points\n";
+    std::cout << compare_summary(rows);
     const std::filesystem::path folder = options.output.folder;
     write_compare_csv(folder / "compare.csv", rows);
     write_compare_json(folder / "compare.json", rows);

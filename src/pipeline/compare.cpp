@@ -137,6 +137,8 @@ CompareRow compare_row(CompareVariant variant, const GenerateReport& report) {
   row.min_scaled_jacobian = report.min_scaled_jacobian;
   row.layer_thickness = report.march.total_thickness;
   row.seconds = report.seconds;
+  if (report.farfield_summary.hull_lengths.edges > 0)
+    row.hull_metric_within_range = report.farfield_summary.hull_lengths.within_range;
   return row;
 }
 
@@ -213,6 +215,30 @@ std::string compare_table(const std::vector<CompareRow>& measured) {
   return table.str();
 }
 
+std::string compare_summary(const std::vector<CompareRow>& measured) {
+  auto find = [&](CompareVariant variant) {
+    const auto row = std::find_if(measured.begin(), measured.end(),
+                                  [&](const CompareRow& candidate) { return candidate.key == variant_key(variant); });
+    return row == measured.end() ? nullptr : &*row;
+  };
+  std::ostringstream text;
+  text << std::fixed << std::setprecision(1);
+  const CompareRow* anisotropic = find(CompareVariant::mixed_anisotropic);
+  const CompareRow* isotropic = find(CompareVariant::mixed_isotropic);
+  auto growth = [](std::size_t value, std::size_t base) {
+    return 100.0 * (static_cast<double>(value) / static_cast<double>(base) - 1.0);
+  };
+  if (anisotropic && isotropic && isotropic->points > 0 && isotropic->tetrahedra > 0)
+    text << "anisotropic over isotropic tets: " << std::showpos << growth(anisotropic->points, isotropic->points)
+         << " % points, " << growth(anisotropic->tetrahedra, isotropic->tetrahedra) << std::noshowpos
+         << " % tetrahedra\n";
+  for (const CompareRow& row : measured)
+    if (row.hull_metric_within_range)
+      text << row.label << ": metric edge lengths at the hull in [0.6, 1.6]: "
+           << 100.0 * *row.hull_metric_within_range << " %\n";
+  return text.str();
+}
+
 void write_compare_csv(const std::filesystem::path& path, const std::vector<CompareRow>& measured) {
   std::ostringstream csv;
   csv << "mesh,label,source,points,surface_elements,hexahedra,tetrahedra,prisms,pyramids,points_to_hybrid\n";
@@ -248,6 +274,8 @@ void write_compare_json(const std::filesystem::path& path, const std::vector<Com
       }
       if (rows == &measured)
         json << ", \"min_scaled_jacobian\": " << row.min_scaled_jacobian << ", \"seconds\": " << row.seconds
+             << ", \"hull_metric_within_range\": "
+             << (row.hull_metric_within_range ? std::to_string(*row.hull_metric_within_range) : "null")
              << ", \"mesh_file\": " << quoted(row.mesh_file.string());
       json << (k + 1 < rows->size() ? "},\n" : "}\n");
     }

@@ -107,6 +107,23 @@ TEST(Compare, TableCsvAndJsonHoldEveryRow) {
   std::filesystem::remove_all(folder);
 }
 
+TEST(Compare, SummaryGivesTheAnisotropicOverheadAndTheHullMetricConformity) {
+  std::vector<CompareRow> rows = measured_rows();
+  rows[0].points = 264;  // anisotropic: 264 points and 65 tetrahedra against 240 and 50
+  rows[0].tetrahedra = 65;
+  rows[0].hull_metric_within_range = 0.8014;
+  const std::string summary = compare_summary(rows);
+  EXPECT_NE(summary.find("anisotropic over isotropic tets: +10.0 % points, +30.0 % tetrahedra"), std::string::npos)
+      << summary;
+  EXPECT_NE(summary.find("mixed, anisotropic tets: metric edge lengths at the hull in [0.6, 1.6]: 80.1 %"),
+            std::string::npos)
+      << summary;
+  EXPECT_EQ(summary.find("mixed, isotropic tets: metric"), std::string::npos) << summary;
+  // Without the isotropic row there is nothing to compare with.
+  rows.erase(rows.begin() + 1);
+  EXPECT_EQ(compare_summary(rows).find("over isotropic"), std::string::npos);
+}
+
 TEST(Compare, RatioNeedsAHybridRow) {
   std::vector<CompareRow> rows = measured_rows();
   rows.pop_back();
