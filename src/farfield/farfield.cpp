@@ -40,6 +40,13 @@ void validate(const FarFieldInput& input, const FarFieldOptions& options) {
   if (input.metric_nodes.size() != input.metrics.size())
     throw Error("farfield: " + std::to_string(input.metric_nodes.size()) + " metric nodes but " +
                 std::to_string(input.metrics.size()) + " metrics");
+  for (Index node : input.metric_nodes)
+    if (node < 0 || static_cast<std::size_t>(node) >= input.points.size())
+      throw Error("farfield: a metric is given at node " + std::to_string(node) + ", not one of the " +
+                  std::to_string(input.points.size()) + " points");
+  if (!(options.flip_dihedral > 90.0 && options.flip_dihedral < 180.0))
+    throw Error("farfield: flip_dihedral must lie in (90, 180) degrees, not " +
+                std::to_string(options.flip_dihedral));
   if (!(options.radius_in_chords > 0.0) || !(options.farfield_size_in_chords > 0.0) ||
       !(options.size_gradient > 0.0) || !(options.radius_edge_ratio > 1.0) || options.reference_chord < 0.0)
     throw Error(
@@ -475,7 +482,8 @@ MetricLengthReport hull_metric_lengths(const MixedMesh& mesh, const std::vector<
   // hull has triangles, and most are rejected by their first node.
   std::vector<const Matrix3*> metric_of(mesh.points.size(), nullptr);
   for (std::size_t entry = 0; entry < metric_nodes.size(); ++entry)
-    metric_of[static_cast<std::size_t>(metric_nodes[entry])] = &metrics[entry];
+    if (metric_nodes[entry] >= 0 && static_cast<std::size_t>(metric_nodes[entry]) < metric_of.size())
+      metric_of[static_cast<std::size_t>(metric_nodes[entry])] = &metrics[entry];
   std::vector<char> on_hull(mesh.points.size(), 0);
   std::vector<FaceKey> hull_keys;
   for (const auto& triangle : hull) {

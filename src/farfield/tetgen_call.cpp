@@ -3,6 +3,7 @@
 #define TETLIBRARY  // the library build of TetGen: errors are thrown, not exit()
 #include <tetgen.h>
 
+#include <cstdlib>
 #include <sstream>
 #include <string>
 
@@ -223,9 +224,21 @@ TetgenOutput run_tetgen(const TetgenInput& input) {
   // run can be stopped at its time limit, and a crash inside TetGen does not take the
   // program down. (TetGen 1.5.0 freed its memory twice on every error it stopped on;
   // tetgen_terminate.cpp mends that, so its error codes arrive.)
+  // Fault injection for the fallbacks' regression tests: MIXMESH_TETGEN_ABORT=N makes
+  // the N-th tetrahedralisation of the process abort in its child, as TetGen 1.5 does
+  // on an internal assertion (the inputs that once did so mesh since the far field
+  // changed, and its fallbacks would otherwise go untested).
+  static int runs = 0;
+  const char* abort_run = std::getenv("MIXMESH_TETGEN_ABORT");
+  const bool inject_abort = abort_run && std::atoi(abort_run) == ++runs;
   try {
     return run_isolated<TetgenOutput>(
-        "TetGen", [&] { return tetrahedralise(input); }, input.time_limit_seconds);
+        "TetGen",
+        [&] {
+          if (inject_abort) std::abort();
+          return tetrahedralise(input);
+        },
+        input.time_limit_seconds);
   } catch (const TimeLimitError&) {
     throw;  // the caller's fallback; no intersection test after a timeout
   } catch (const Error&) {

@@ -272,11 +272,16 @@ void write_compare_json(const std::filesystem::path& path, const std::vector<Com
       } else {
         json << "null";
       }
-      if (rows == &measured)
+      if (rows == &measured) {
         json << ", \"min_scaled_jacobian\": " << row.min_scaled_jacobian << ", \"seconds\": " << row.seconds
-             << ", \"hull_metric_within_range\": "
-             << (row.hull_metric_within_range ? std::to_string(*row.hull_metric_within_range) : "null")
-             << ", \"mesh_file\": " << quoted(row.mesh_file.string());
+             << ", \"hull_metric_within_range\": ";
+        if (row.hull_metric_within_range) {
+          json << *row.hull_metric_within_range;
+        } else {
+          json << "null";
+        }
+        json << ", \"mesh_file\": " << quoted(row.mesh_file.string());
+      }
       json << (k + 1 < rows->size() ? "},\n" : "}\n");
     }
     json << (rows == &measured ? "  ],\n" : "  ]\n");

@@ -99,7 +99,7 @@ double point_ratio_to_hybrid(const CompareRow& row, const std::vector<CompareRow
 CompareVariant variant_from_key(const std::string& key);
 
 // What the anisotropic far field costs and gives, for the summary below the table:
-// "anisotropic over isotropic tetrahedra: +2.1 % points, +22.0 % tetrahedra" when both
+// "anisotropic over isotropic tets: +2.1 % points, +22.0 % tetrahedra" when both
 // mixed rows were built, and each row's "metric edge lengths at the hull in [0.6, 1.6]"
 // where it has them; one line each.
 std::string compare_summary(const std::vector<CompareRow>& measured);
