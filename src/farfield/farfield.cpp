@@ -491,11 +491,6 @@ MetricLengthReport hull_metric_lengths(const MixedMesh& mesh, const std::vector<
     for (Index node : triangle) on_hull[static_cast<std::size_t>(node)] = 1;
   }
   std::sort(hull_keys.begin(), hull_keys.end());
-  auto is_hull_face = [&](const std::array<Index, 3>& face) {
-    for (Index node : face)
-      if (!on_hull[static_cast<std::size_t>(node)]) return false;
-    return std::binary_search(hull_keys.begin(), hull_keys.end(), triangle_key(face));
-  };
 
   std::vector<double> lengths;
   const std::size_t count = mesh.cell_count(CellType::tetrahedron);
@@ -505,8 +500,11 @@ MetricLengthReport hull_metric_lengths(const MixedMesh& mesh, const std::vector<
       const LocalFace& local = tetrahedron_descriptor.faces[static_cast<std::size_t>(face)];
       const std::array<Index, 3> corners = {nodes[local.nodes[0]], nodes[local.nodes[1]],
                                             nodes[local.nodes[2]]};
-      if (!is_hull_face(corners)) continue;
+      if (!std::all_of(corners.begin(), corners.end(),
+                       [&](Index node) { return on_hull[static_cast<std::size_t>(node)] != 0; }))
+        continue;
       const FaceKey key = triangle_key(corners);
+      if (!std::binary_search(hull_keys.begin(), hull_keys.end(), key)) continue;
       std::vector<Matrix3> face_metrics;
       for (Index node : {key[0], key[1], key[2]})
         if (const Matrix3* metric = metric_of[static_cast<std::size_t>(node)])

@@ -71,7 +71,7 @@ struct TetgenInput {
   std::vector<Triangle> triangles;  // the closed boundary
   std::vector<Vector3> holes;
   double radius_edge_ratio = 1.5;
-  double flip_dihedral = 150.0;     // TetGen flips tetrahedra above this (degrees)
+  double flip_dihedral = FarFieldOptions{}.flip_dihedral;  // TetGen flips tetrahedra above this
   bool quality = true;              // -q and -m; off, TetGen only recovers the boundary
   unsigned time_limit_seconds = 0;  // 0: none
 };
