@@ -9,6 +9,7 @@
 
 #include <Eigen/Geometry>
 
+#include "concave_corners.hpp"
 #include "front.hpp"
 #include "junction.hpp"
 #include "layer_checks.hpp"
@@ -391,9 +392,12 @@ struct LineData {
   std::vector<std::vector<int>> face_neighbours;
   std::vector<char> on_wall;
   std::vector<std::vector<Vector3>> conormals;
-  // Wake lines thicken and relax their growth downstream (spacing.hpp, wake_layer_steps);
-  // only lines off the wall keep their own steps (empty: the wall's).
-  std::vector<std::vector<double>> wake_steps;
+  // Wake lines thicken and relax their growth downstream (spacing.hpp, wake_layer_steps),
+  // and lines near a concave corner of a sheet and a wall keep a thinner stack
+  // (concave_corners.hpp); only those lines keep their own steps (empty: the wall's).
+  std::vector<std::vector<double>> own_steps;
+  int thinned_lines = 0;        // lines near a concave corner whose stack was thinned
+  double thinnest_stack = 0.0;  // the thinnest of those stacks (m)
   std::vector<char> junction_line;
   std::vector<Vector3> sheet_normal;
 };
@@ -523,6 +527,24 @@ std::vector<char> junction_lines(const Front& front) {
   return junction_line;
 }
 
+// The lines near a concave corner of a sheet and a wall (a blunt base with the wake
+// leaving its middle) keep every layer in a stack no thicker than the corner allows.
+void thin_near_concave_corners(const Front& front, const std::vector<double>& steps,
+                               const std::vector<Vector3>& points, LineData& lines) {
+  const std::vector<march_detail::ConcaveCorner> corners = march_detail::concave_corners(front, points);
+  if (corners.empty()) return;
+  const std::vector<double> limit = march_detail::corner_thickness_limits(corners, points);
+  for (std::size_t c = 0; c < points.size(); ++c) {
+    const std::vector<double>& own = lines.own_steps[c].empty() ? steps : lines.own_steps[c];
+    double thickness = 0.0;
+    for (double step : own) thickness += step;
+    if (!(limit[c] < thickness)) continue;
+    lines.own_steps[c] = steps_within_thickness(own, limit[c]);
+    lines.thinnest_stack = lines.thinned_lines == 0 ? limit[c] : std::min(lines.thinnest_stack, limit[c]);
+    ++lines.thinned_lines;
+  }
+}
+
 // `points`: the lines' surface points.
 LineData line_data(const Front& front, const MarchOptions& options, const std::vector<double>& steps,
                    const std::vector<Vector3>& points) {
@@ -530,7 +552,8 @@ LineData line_data(const Front& front, const MarchOptions& options, const std::v
   lines.face_neighbours = face_neighbours(front);
   lines.on_wall = wall_lines(front);
   lines.conormals = end_conormals(front, points, lines.on_wall);
-  lines.wake_steps = line_wake_steps(front, options, steps, points, lines.on_wall);
+  lines.own_steps = line_wake_steps(front, options, steps, points, lines.on_wall);
+  thin_near_concave_corners(front, steps, points, lines);
   lines.junction_line = junction_lines(front);
   lines.sheet_normal = sheet_side_normals(front, points);
   return lines;
@@ -578,11 +601,11 @@ std::vector<Vector3> layer_normals(const MarchContext& march, MarchState& state,
 // to the outer layer height.
 std::vector<double> line_steps(const MarchContext& march, const MarchState& state, int layer) {
   const std::vector<double>& steps = march.steps;
-  const std::vector<std::vector<double>>& wake_steps = march.lines.wake_steps;
+  const std::vector<std::vector<double>>& own_steps = march.lines.own_steps;
   const MarchOptions& options = march.options;
-  std::vector<double> step(wake_steps.size());
+  std::vector<double> step(own_steps.size());
   for (std::size_t c = 0; c < step.size(); ++c)
-    step[c] = (wake_steps[c].empty() ? steps : wake_steps[c])[static_cast<std::size_t>(layer)];
+    step[c] = (own_steps[c].empty() ? steps : own_steps[c])[static_cast<std::size_t>(layer)];
   if (layer + 1 == static_cast<int>(steps.size()) && options.outer_layer_height > 0.0)
     raise_to_outer_height(march.front, state.current, state.face_active, options.outer_layer_height, step);
   return step;
@@ -924,6 +947,11 @@ void log_summary(const BoundaryLayer& result, const Log& log) {
              ", largest dihedral angle of their "
              "tetrahedra " +
              degrees_text(report.junction_largest_dihedral_degrees) + " deg");
+  if (report.thinned_lines > 0)
+    log.info("march: " + std::to_string(report.thinned_lines) +
+             " lines near the concave corners of a sheet and a wall (a blunt base with a wake) in stacks "
+             "down to " +
+             scientific(report.thinnest_stack) + " m thick");
   for (const StoppedRegion& region : report.stopped)
     log.warning("march: " + std::to_string(region.faces) + " faces stopped at layer " +
                 std::to_string(region.layer) + " near " + point_text(region.location) + " (" +
@@ -996,6 +1024,8 @@ BoundaryLayer march_layers(const SurfaceMesh& surface, const MarchOptions& optio
   march_detail::add_boundary_faces(front, options, result);
 
   finish_report(steps, state, result);
+  report.thinned_lines = march.lines.thinned_lines;
+  report.thinnest_stack = march.lines.thinnest_stack;
   report.seconds = stopwatch.seconds();
   if (log) log_summary(result, *log);
   return result;

@@ -117,4 +117,35 @@ std::vector<double> wake_layer_steps(const std::vector<double>& wall_steps, doub
   return steps;
 }
 
+std::vector<double> steps_within_thickness(const std::vector<double>& steps, double thickness) {
+  if (!(thickness > 0.0) || !std::isfinite(thickness))
+    throw Error("march: a layer thickness limit must be positive, got " + number(thickness));
+  double total = 0.0;
+  for (double step : steps) {
+    if (!(step > 0.0) || !std::isfinite(step))
+      throw Error("march: steps must be positive, got " + number(step));
+    total += step;
+  }
+  if (total <= thickness) return steps;
+  const double first = steps.front();
+  const auto scaled = [&](double exponent) {
+    std::vector<double> result(steps.size());
+    for (std::size_t k = 0; k < steps.size(); ++k) result[k] = first * std::pow(steps[k] / first, exponent);
+    return result;
+  };
+  const auto sum = [](const std::vector<double>& values) {
+    double result = 0.0;
+    for (double value : values) result += value;
+    return result;
+  };
+  if (sum(scaled(0.0)) >= thickness)
+    return std::vector<double>(steps.size(), thickness / static_cast<double>(steps.size()));
+  double low = 0.0, high = 1.0;
+  for (int iteration = 0; iteration < 60; ++iteration) {
+    const double middle = 0.5 * (low + high);
+    (sum(scaled(middle)) > thickness ? high : low) = middle;
+  }
+  return scaled(low);
+}
+
 }  // namespace mixmesh

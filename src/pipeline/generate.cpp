@@ -162,6 +162,10 @@ BoundaryLayer march_stage(const SurfaceMesh& surface, const MarchOptions& march_
            std::to_string(layers.mesh.cell_count(CellType::prism)) + " prisms, first spacing " +
            std::to_string(layers.report.first_spacing) + " m, thickness " +
            std::to_string(layers.report.total_thickness) + " m");
+  if (layers.report.thinned_lines > 0)
+    log.info("march: " + std::to_string(layers.report.thinned_lines) +
+             " lines near a blunt base's corners with the wake in thinner stacks, down to " +
+             std::to_string(layers.report.thinnest_stack) + " m");
   if (layers.report.stopped_faces > 0) {
     const StoppedRegion& lowest = layers.report.stopped.front();  // sorted by layer
     log.warning("march: growth stopped early on " + std::to_string(layers.report.stopped_faces) + " faces (" +
@@ -447,7 +451,8 @@ void write_report(const std::filesystem::path& path, const GenerateReport& repor
          << "\nstopped_faces = " << report.march.stopped_faces
          << "\nblended_faces = " << report.march.blended_faces << "\nthickness_lost = "
          << (report.march.stopped.empty() ? 0.0 : report.march.stopped.front().thickness_lost)
-         << "\nhull_retries = " << report.hull_retries
+         << "\nthinned_lines = " << report.march.thinned_lines
+         << "\nthinnest_stack = " << report.march.thinnest_stack << "\nhull_retries = " << report.hull_retries
          << "\nhull_metric_edges_within_range = " << report.farfield_summary.hull_lengths.within_range
          << "\nlargest_dihedral = " << report.slivers.largest_dihedral_after
          << "\ntetrahedra_above_target_dihedral = " << report.slivers.above_target_after

@@ -89,28 +89,44 @@ add_test(NAME pipeline_check_mesh_onera_m6_pitched
 set_tests_properties(pipeline_check_mesh_onera_m6_pitched PROPERTIES LABELS "regression;heavy"
                      FIXTURES_REQUIRED onera_m6_pitched PASS_REGULAR_EXPRESSION "\nVALID")
 
-# A hull that intersects itself is mended by lowering the layers round the crossing. A
-# blunt base with a wake: the base's lines and the sheet's first lines cross in the
-# concave corner behind the base at the root and by the tip, low in the layers. Stopping
-# four layers lower per retry (24, 20, 16 of 28) never cleared it; halving them (14,
-# then 7) does, on the second retry. (The cranked wing this test used before, with a
-# crossing behind its tip's trailing edge, meshes without a retry since the march's
-# lines see every wall face they start from.)
+# A hull that intersects itself is mended by lowering the layers round the crossing:
+# growth stops at the tip's trailing edge of a strongly tapered wing (taper 0.21) at layer
+# 23, and the hull crosses itself there; stopping the layers within reach at layer 14
+# clears it on the first retry. (The wings this test used before, a cranked wing and then
+# a blunt base with a wake, mesh without a retry since the march's lines see every wall
+# face they start from and the stacks round a base's corners are thinner.)
 add_test(NAME pipeline_hull_crossing_lowers_the_layers
-         COMMAND mixmesh-cli generate ${CMAKE_CURRENT_LIST_DIR}/pipeline/base_and_wake_wing.toml
+         COMMAND mixmesh-cli generate ${CMAKE_CURRENT_LIST_DIR}/pipeline/tip_stop_wing.toml
                  --output-dir ${pipeline_folder}/hull_crossing
                  --report ${pipeline_folder}/hull_crossing/report.toml)
 set_tests_properties(pipeline_hull_crossing_lowers_the_layers PROPERTIES LABELS regression
                      FIXTURES_SETUP hull_crossing_mesh
                      PASS_REGULAR_EXPRESSION "the hull intersects itself near [^\n]* stop by layer 14 \\(retry 1 of 3\\).*points [0-9]+  surface elements")
 add_test(NAME pipeline_check_mesh_hull_crossing
-         COMMAND ${MIXMESH_PYTHON} ${MIXMESH_CHECK_MESH} ${pipeline_folder}/hull_crossing/base_and_wake_wing.vtu -q)
+         COMMAND ${MIXMESH_PYTHON} ${MIXMESH_CHECK_MESH} ${pipeline_folder}/hull_crossing/tip_stop_wing.vtu -q)
 set_tests_properties(pipeline_check_mesh_hull_crossing PROPERTIES LABELS regression
                      FIXTURES_REQUIRED hull_crossing_mesh PASS_REGULAR_EXPRESSION "\nVALID")
 add_test(NAME pipeline_report_counts_hull_retries
          COMMAND ${CMAKE_COMMAND} -E cat ${pipeline_folder}/hull_crossing/report.toml)
 set_tests_properties(pipeline_report_counts_hull_retries PROPERTIES LABELS regression
-                     FIXTURES_REQUIRED hull_crossing_mesh PASS_REGULAR_EXPRESSION "\nhull_retries = 2\n")
+                     FIXTURES_REQUIRED hull_crossing_mesh PASS_REGULAR_EXPRESSION "\nhull_retries = 1\n")
+
+# A blunt base with a wake (random wing 2 of seed 11 at 80 x 16 wing faces): the base's
+# lines and the sheet's first lines met in the concave corner between them, growth
+# stopped along the base and the hull crossed itself (two retries). The lines near the
+# corners march in thinner stacks: every layer grows, no retry, and the mesh is valid.
+add_test(NAME pipeline_blunt_base_with_a_wake_grows_every_layer
+         COMMAND mixmesh-cli generate ${CMAKE_CURRENT_LIST_DIR}/pipeline/base_and_wake_wing.toml
+                 --output-dir ${pipeline_folder}/base_and_wake
+                 --report ${pipeline_folder}/base_and_wake/report.toml)
+set_tests_properties(pipeline_blunt_base_with_a_wake_grows_every_layer PROPERTIES LABELS regression
+                     FIXTURES_SETUP base_and_wake_mesh
+                     PASS_REGULAR_EXPRESSION "28/28 layers.*lines near a blunt base's corners with the wake in thinner stacks.*points [0-9]+  surface elements"
+                     FAIL_REGULAR_EXPRESSION "growth stopped|intersects itself|retry")
+add_test(NAME pipeline_check_mesh_base_and_wake
+         COMMAND ${MIXMESH_PYTHON} ${MIXMESH_CHECK_MESH} ${pipeline_folder}/base_and_wake/base_and_wake_wing.vtu -q)
+set_tests_properties(pipeline_check_mesh_base_and_wake PROPERTIES LABELS regression
+                     FIXTURES_REQUIRED base_and_wake_mesh PASS_REGULAR_EXPRESSION "\nVALID")
 
 # A wing of tests/regression/pipeline/CONFIG.toml generated into FOLDER (test GENERATE_TEST,
 # passing on EXPECTED) and its mesh judged VALID by the independent checker (CHECK_TEST).

@@ -73,5 +73,32 @@ TEST(MarchSpacing, RejectsInconsistentOptions) {
                                                                            options.reference_length));
 }
 
+// A stack thinned near a concave corner keeps its first step (the wall's y+) and stays
+// geometric with a smaller growth; only a limit below N first steps makes it uniform.
+TEST(MarchSpacing, StepsWithinAThicknessKeepTheFirstStep) {
+  SpacingOptions options;  // the ONERA M6 stack: 32 layers from 1.546 um, growth 1.25
+  const std::vector<double> steps = layer_steps(options);
+  double total = 0.0;
+  for (double step : steps) total += step;
+  EXPECT_EQ(steps_within_thickness(steps, total * 1.5), steps);
+  for (double fraction : {0.5, 0.1, 0.02}) {
+    const std::vector<double> thinner = steps_within_thickness(steps, fraction * total);
+    ASSERT_EQ(thinner.size(), steps.size());
+    double sum = 0.0;
+    for (double step : thinner) sum += step;
+    EXPECT_NEAR(sum, fraction * total, 1e-9 * total) << fraction;
+    EXPECT_DOUBLE_EQ(thinner.front(), steps.front());
+    const double growth = thinner[1] / thinner[0];
+    EXPECT_GT(growth, 1.0);
+    EXPECT_LT(growth, 1.25);
+    for (std::size_t k = 2; k < thinner.size(); ++k) EXPECT_NEAR(thinner[k] / thinner[k - 1], growth, 1e-9);
+  }
+  const double tiny = 0.5 * steps.front() * static_cast<double>(steps.size());
+  for (double step : steps_within_thickness(steps, tiny))
+    EXPECT_DOUBLE_EQ(step, tiny / static_cast<double>(steps.size()));
+  EXPECT_THROW(steps_within_thickness(steps, 0.0), Error);
+  EXPECT_THROW(steps_within_thickness({1e-6, -1e-6}, 1.0), Error);
+}
+
 }  // namespace
 }  // namespace mixmesh

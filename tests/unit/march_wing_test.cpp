@@ -155,6 +155,33 @@ TEST(MarchWing, SweptBluntBaseWithAWakeGrowsEveryLayerAtTheTip) {
   EXPECT_TRUE(match_faces(layer.mesh).conforming());
 }
 
+// Thirty-two layers 14 mm thick over a base half 1.26 mm high: offset from the
+// base and from the sheet, they swallowed the faces next to the concave corner between
+// them, and the base's columns stopped (every random wing with a base and a wake
+// stopped). The lines near the corner keep every layer in a thinner stack instead
+// (concave_corners.hpp), so the whole front grows all its layers.
+TEST(MarchWing, BluntBaseWithAWakeGrowsEveryLayerRoundItsCorners) {
+  march_surfaces::TestWing wing = coarse_wing(8);
+  wing.blunt_base = true;
+  const SurfaceMesh surface = march_surfaces::wing(wing);
+  const BoundaryLayer layer = march_layers(surface, wing_options());
+  EXPECT_EQ(layer.report.stopped_faces, 0);
+  EXPECT_EQ(layer.report.layers_completed, 32);
+  EXPECT_GT(layer.report.thinned_lines, 0);
+  EXPECT_EQ(march_surfaces::invalid_cell_count(layer.mesh), 0);
+  EXPECT_TRUE(match_faces(layer.mesh).conforming());
+  // The wing away from its base keeps the full stack: the thinning is local.
+  std::size_t full = 0, lines = 0;
+  for (std::size_t c = 0; c < layer.column_points.size(); ++c) {
+    const Vector3& start = surface.points[static_cast<std::size_t>(layer.column_node[c])];
+    if (start.x() > 0.5) continue;
+    ++lines;
+    const Vector3& top = layer.mesh.points[static_cast<std::size_t>(layer.column_points[c].back())];
+    full += (top - start).norm() > 0.95 * layer.report.total_thickness;
+  }
+  EXPECT_EQ(full, lines);
+}
+
 // generate lowers the layers round a place where the hull crossed itself. A stop whose
 // reach is smaller than the faces at the root's trailing edge (5 mm here) reaches them by
 // their nodes: by their centroids alone it reached none and the retries there changed

@@ -112,6 +112,11 @@ struct MarchReport {
   int stopped_nodes = 0;               // surface nodes on such faces
   int blended_faces = 0;               // of those, stopped to slope down to a stopped neighbour
   std::vector<StoppedRegion> stopped;  // grouped by layer
+  // Lines near a concave corner of a sheet and a wall (a blunt base with the wake
+  // leaving its middle) that keep every layer in a thinner stack, and the thinnest
+  // such stack (m; 0 when there is none).
+  int thinned_lines = 0;
+  double thinnest_stack = 0.0;
   // Corrector: sweeps or outer iterations over all layers, and the largest last change
   // of a layer (node change of its last iteration / node step).
   int corrector_iterations = 0;

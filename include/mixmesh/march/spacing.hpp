@@ -49,4 +49,11 @@ std::vector<double> layer_steps(const SpacingOptions& options);
 std::vector<double> wake_layer_steps(const std::vector<double>& wall_steps, double distance,
                                      double spread_degrees);
 
+// The N steps rescaled to sum to `thickness` when they sum to more, with the first
+// step kept: step_k = s_0 (s_k / s_0)^e, the exponent e in [0, 1] found by bisection (a
+// geometric stack of growth g stays geometric with growth g^e). Only when N s_0 alone
+// exceeds the thickness are all steps equal, thickness / N. Steps that already fit are
+// returned unchanged. Throws mixmesh::Error for a non-positive thickness or step.
+std::vector<double> steps_within_thickness(const std::vector<double>& steps, double thickness);
+
 }  // namespace mixmesh
