@@ -488,6 +488,31 @@ TEST(InterfaceSplit, TallCapsComeDownOnlyWhereTheyCrossTheHull) {
   }
 }
 
+// Over a gentle fold (tops rising 0.05 per unit either side of x = 4: 5.7 degrees between
+// the quads' normals) the tall caps either side (quads 1 x 10, apexes 2 out) stand along
+// their neighbourhood's mean normal: along their own normals their apexes would lean
+// together to 0.8 apart, and the far field's tetrahedron of the shared edge and the two
+// apexes would be the flatter.
+TEST(InterfaceSplit, CapsOverAGentleFoldStandAlongTheirMeanNormal) {
+  InterfaceResult result;
+  const auto heights = cap_heights(Vector3(1, 10, 1), 0.05, result);
+  ASSERT_EQ(heights.size(), 6u);
+  EXPECT_EQ(invalid_cells(result.mesh), 0);
+  std::vector<Vector3> apexes;
+  for (std::size_t cell = 0; cell < result.mesh.cell_count(CellType::pyramid); ++cell) {
+    const Index* nodes = result.mesh.cell(CellType::pyramid, cell);
+    const Vector3& apex = result.mesh.points[static_cast<std::size_t>(nodes[4])];
+    if (apex.z() > 1.5) apexes.push_back(apex);  // the caps' apexes, 2 over tops near 1.05
+  }
+  ASSERT_EQ(apexes.size(), 6u);
+  for (const Vector3& left : apexes)
+    for (const Vector3& right : apexes)
+      if (left.x() < 4.0 && right.x() > 4.0 && std::abs(left.y() - right.y()) < 1.0) {
+        std::printf("apexes %.4f apart\n", (right - left).norm());
+        EXPECT_GT((right - left).norm(), 0.9);
+      }
+}
+
 // Next to the footprint (the hull's free edges, here the block's sides) a cap stands no
 // higher than its quad's middle is from it: on quads 10 × 1 (tall height 2) the caps of
 // rows 1 and 3 (1.5 from the side) stand 1.5, those of the middle row (2.5) stay at 2.
