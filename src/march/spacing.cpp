@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <sstream>
+#include <string>
 
 #include "mixmesh/core/error.hpp"
 
@@ -13,6 +14,16 @@ std::string number(double value) {
   std::ostringstream stream;
   stream << value;
   return stream.str();
+}
+
+// The sum of `steps`, each checked to be positive and finite (`what` names them).
+double positive_sum(const std::vector<double>& steps, const std::string& what) {
+  double sum = 0.0;
+  for (double step : steps) {
+    if (!(step > 0.0) || !std::isfinite(step)) throw Error("march: " + what + " must be positive, got " + number(step));
+    sum += step;
+  }
+  return sum;
 }
 
 }  // namespace
@@ -86,12 +97,7 @@ std::vector<double> wake_layer_steps(const std::vector<double>& wall_steps, doub
     throw Error("march: wake distance must be finite and >= 0, got " + number(distance));
   if (!(spread_degrees >= 0.0 && spread_degrees < 45.0))
     throw Error("march: wake spread must lie in [0, 45) degrees, got " + number(spread_degrees));
-  double thickness = 0.0;
-  for (double step : wall_steps) {
-    if (!(step > 0.0) || !std::isfinite(step))
-      throw Error("march: wall steps must be positive, got " + number(step));
-    thickness += step;
-  }
+  const double thickness = positive_sum(wall_steps, "wall steps");
   if (wall_steps.empty()) return wall_steps;
   // The wedge's added thickness in wall thicknesses, x, starts as x^2 / (x + 1): flat at
   // the trailing edge, so the lines next to it (and the wing's cells that share their
@@ -120,13 +126,7 @@ std::vector<double> wake_layer_steps(const std::vector<double>& wall_steps, doub
 std::vector<double> steps_within_thickness(const std::vector<double>& steps, double thickness) {
   if (!(thickness > 0.0) || !std::isfinite(thickness))
     throw Error("march: a layer thickness limit must be positive, got " + number(thickness));
-  double total = 0.0;
-  for (double step : steps) {
-    if (!(step > 0.0) || !std::isfinite(step))
-      throw Error("march: steps must be positive, got " + number(step));
-    total += step;
-  }
-  if (total <= thickness) return steps;
+  if (positive_sum(steps, "steps") <= thickness) return steps;
   const double first = steps.front();
   const auto scaled = [&](double exponent) {
     std::vector<double> result(steps.size());

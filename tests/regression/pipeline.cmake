@@ -111,23 +111,6 @@ add_test(NAME pipeline_report_counts_hull_retries
 set_tests_properties(pipeline_report_counts_hull_retries PROPERTIES LABELS regression
                      FIXTURES_REQUIRED hull_crossing_mesh PASS_REGULAR_EXPRESSION "\nhull_retries = 1\n")
 
-# A blunt base with a wake (random wing 2 of seed 11 at 80 x 16 wing faces): the base's
-# lines and the sheet's first lines met in the concave corner between them, growth
-# stopped along the base and the hull crossed itself (two retries). The lines near the
-# corners march in thinner stacks: every layer grows, no retry, and the mesh is valid.
-add_test(NAME pipeline_blunt_base_with_a_wake_grows_every_layer
-         COMMAND mixmesh-cli generate ${CMAKE_CURRENT_LIST_DIR}/pipeline/base_and_wake_wing.toml
-                 --output-dir ${pipeline_folder}/base_and_wake
-                 --report ${pipeline_folder}/base_and_wake/report.toml)
-set_tests_properties(pipeline_blunt_base_with_a_wake_grows_every_layer PROPERTIES LABELS regression
-                     FIXTURES_SETUP base_and_wake_mesh
-                     PASS_REGULAR_EXPRESSION "28/28 layers.*lines near a blunt base's corners with the wake in thinner stacks.*points [0-9]+  surface elements"
-                     FAIL_REGULAR_EXPRESSION "growth stopped|intersects itself|retry")
-add_test(NAME pipeline_check_mesh_base_and_wake
-         COMMAND ${MIXMESH_PYTHON} ${MIXMESH_CHECK_MESH} ${pipeline_folder}/base_and_wake/base_and_wake_wing.vtu -q)
-set_tests_properties(pipeline_check_mesh_base_and_wake PROPERTIES LABELS regression
-                     FIXTURES_REQUIRED base_and_wake_mesh PASS_REGULAR_EXPRESSION "\nVALID")
-
 # A wing of tests/regression/pipeline/CONFIG.toml generated into FOLDER (test GENERATE_TEST,
 # passing on EXPECTED) and its mesh judged VALID by the independent checker (CHECK_TEST).
 function(pipeline_wing_case generate_test check_test config folder expected)
@@ -141,6 +124,16 @@ function(pipeline_wing_case generate_test check_test config folder expected)
   set_tests_properties(${check_test} PROPERTIES LABELS regression FIXTURES_REQUIRED ${folder}_mesh
                        PASS_REGULAR_EXPRESSION "\nVALID")
 endfunction()
+
+# A blunt base with a wake (random wing 2 of seed 11 at 80 x 16 wing faces): the base's
+# lines and the sheet's first lines met in the concave corner between them, growth
+# stopped along the base and the hull crossed itself (two retries). The lines near the
+# corners march in thinner stacks: every layer grows, no retry, and the mesh is valid.
+pipeline_wing_case(pipeline_blunt_base_with_a_wake_grows_every_layer pipeline_check_mesh_base_and_wake
+                   base_and_wake_wing base_and_wake
+                   "28/28 layers.*lines near a blunt base's corners with the wake in thinner stacks.*points [0-9]+  surface elements")
+set_tests_properties(pipeline_blunt_base_with_a_wake_grows_every_layer PROPERTIES
+                     FAIL_REGULAR_EXPRESSION "growth stopped|intersects itself|retry")
 
 # An outer cell that can be neither split nor capped (twisted more than it is thick, at
 # a tip's trailing edge where the growth stopped early) is a place to lower the layers,
