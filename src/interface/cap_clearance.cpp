@@ -51,7 +51,7 @@ Triangle3 shrunk(const MixedMesh& mesh, const std::array<Index, 3>& triangle) {
 bool lower_to(MixedMesh& mesh, TallCap& cap, double height) {
   Vector3& apex = mesh.points[static_cast<std::size_t>(cap.apex)];
   const Vector3 before = apex;
-  apex = cap.middle + height * cap.normal;
+  apex = cap.middle + height * cap.direction;
   if (!cell_shape(CellType::pyramid, mesh.points, cap.pyramid.data()).valid()) {
     apex = before;
     return false;
@@ -60,9 +60,9 @@ bool lower_to(MixedMesh& mesh, TallCap& cap, double height) {
   return true;
 }
 
-using CapPairs = std::vector<std::vector<std::pair<std::size_t, std::array<Index, 2>>>>;
+using CapPairs = std::vector<std::vector<std::size_t>>;
 
-// Per cap, the caps that share an edge of its quad, with that edge.
+// Per cap, the caps that share an edge of its quad.
 CapPairs cap_pairs(const std::vector<TallCap>& caps) {
   std::map<std::pair<Index, Index>, std::vector<std::size_t>> edge_caps;
   for (std::size_t cap = 0; cap < caps.size(); ++cap)
@@ -74,7 +74,7 @@ CapPairs cap_pairs(const std::vector<TallCap>& caps) {
   for (const auto& [edge, sharing] : edge_caps)
     for (std::size_t first : sharing)
       for (std::size_t second : sharing)
-        if (first != second) pairs[first].push_back({second, {edge.first, edge.second}});
+        if (first != second) pairs[first].push_back(second);
   return pairs;
 }
 
@@ -99,7 +99,7 @@ std::vector<char> level_neighbouring_caps(MixedMesh& mesh, std::vector<TallCap>&
     const auto [height, cap] = queue.top();
     queue.pop();
     if (height > caps[cap].height) continue;  // a stale entry
-    for (const auto& [neighbour, edge] : pairs[cap]) {
+    for (std::size_t neighbour : pairs[cap]) {
       TallCap& next = caps[neighbour];
       const double bound = std::max(next.lowest, height + (next.middle - caps[cap].middle).norm());
       if (next.height > bound * (1.0 + 1e-9) && lower_to(mesh, next, bound)) {
@@ -121,13 +121,14 @@ std::vector<char> level_neighbouring_caps(MixedMesh& mesh, std::vector<TallCap>&
 void align_neighbouring_caps(MixedMesh& mesh, std::vector<TallCap>& caps, const CapPairs& pairs) {
   constexpr double fold_degrees = 20.0;
   const double least_cosine = std::cos(fold_degrees * M_PI / 180.0);
+  // The fold is judged on the quads' own normals, so a chain of gentle folds does not
+  // carry a cap past fold_degrees.
   for (int pass = 0; pass < 2; ++pass) {
     std::vector<Vector3> direction(caps.size());
     for (std::size_t cap = 0; cap < caps.size(); ++cap) {
-      direction[cap] = caps[cap].normal;
-      for (const auto& [neighbour, edge] : pairs[cap])
-        if (caps[neighbour].normal.dot(caps[cap].normal) > least_cosine)
-          direction[cap] += caps[neighbour].normal;
+      direction[cap] = caps[cap].direction;
+      for (std::size_t neighbour : pairs[cap])
+        if (caps[neighbour].normal.dot(caps[cap].normal) > least_cosine) direction[cap] += caps[neighbour].direction;
       direction[cap].normalize();
     }
     for (std::size_t cap = 0; cap < caps.size(); ++cap) {
@@ -136,7 +137,7 @@ void align_neighbouring_caps(MixedMesh& mesh, std::vector<TallCap>& caps, const 
       const Vector3 before = apex;
       apex = tall.middle + tall.height * direction[cap];
       if (cell_shape(CellType::pyramid, mesh.points, tall.pyramid.data()).valid())
-        tall.normal = direction[cap];
+        tall.direction = direction[cap];
       else
         apex = before;
     }
@@ -183,7 +184,8 @@ std::size_t lower_crossing_caps(MixedMesh& mesh, const std::vector<std::array<In
     std::vector<std::size_t> crossing;
     std::vector<Primitive::Id> hits;
     for (std::size_t cap = 0; cap < caps.size(); ++cap) {
-      if (!(caps[cap].height > caps[cap].lowest)) continue;
+      const bool aligned = caps[cap].direction != caps[cap].normal;
+      if (!(caps[cap].height > caps[cap].lowest) && !aligned) continue;
       bool crosses = false;
       for (std::size_t side = 0; side < 4 && !crosses; ++side) {
         const std::size_t own = caps[cap].first_hull_triangle + side;
@@ -201,6 +203,16 @@ std::size_t lower_crossing_caps(MixedMesh& mesh, const std::vector<std::array<In
     std::size_t moved = 0;
     for (std::size_t cap : crossing) {
       TallCap& tall = caps[cap];
+      if (!(tall.height > tall.lowest)) {
+        // At its lowest and still crossing: back along its own normal, the standard cap.
+        const Vector3 aligned = tall.direction;
+        tall.direction = tall.normal;
+        if (lower_to(mesh, tall, tall.height))
+          ++moved;
+        else
+          tall.direction = aligned;
+        continue;
+      }
       if (!lower_to(mesh, tall, std::max(tall.lowest, 0.5 * tall.height))) {
         tall.lowest = tall.height;  // a twisted quad: no lower cap is valid
         continue;

@@ -14,15 +14,18 @@ struct TallCap {
   Index apex = -1;
   Vector3 middle = Vector3::Zero();     // of its quad
   Vector3 normal = Vector3::Zero();     // of its quad, unit, outward
+  Vector3 direction = Vector3::Zero();  // of its apex from the middle, unit (its normal, or aligned)
   double height = 0.0;                  // the apex's height over the middle now
   double lowest = 0.0;                  // the height it may come down to
   std::array<Index, 5> pyramid{};       // quad corners, apex
   std::size_t first_hull_triangle = 0;  // its four hull triangles follow in order
 };
 
-// Halves the height of every cap with a face crossing another hull triangle (not
-// below `lowest`, and not to an inverted pyramid), until no cap crosses or none can
-// come down further. Returns the number of caps lowered.
+// Aligns the caps with their neighbours' normals, halves the height of every cap with a
+// face crossing another hull triangle (not below `lowest`, and not to an inverted
+// pyramid; a cap at its lowest that still crosses goes back to its own normal) until no
+// cap crosses or none can come down further, and levels neighbouring caps. Returns the
+// number of caps lowered (clear of the hull or level with a neighbour).
 std::size_t lower_crossing_caps(MixedMesh& mesh, const std::vector<std::array<Index, 3>>& hull,
                                 std::vector<TallCap>& caps);
 

@@ -459,6 +459,7 @@ void cap_cell(CellType type, std::size_t cell, const Index* nodes, unsigned oute
       tall_caps->push_back({apex,
                             middle,
                             normal,
+                            normal,
                             height,
                             cap_height * lowest_reach,
                             {corners[0], corners[1], corners[2], corners[3], apex},

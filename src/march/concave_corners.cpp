@@ -59,7 +59,12 @@ std::vector<ConcaveCorner> concave_corners(const Front& front, const std::vector
     // plane by more than a trailing edge's half angle.
     if (wall_normal.dot(sheet_area.normalized()) > least_cosine) continue;
     if ((centre(points, sheet) - 0.5 * (start + end)).dot(wall_normal) <= 0.0) continue;
-    const double size = std::min(wall_area.norm(), sheet_area.norm()) / length;
+    // A face's height over the edge: its area over the edge's length (twice that for a
+    // triangle).
+    const auto height = [&](const FrontFace& face, const Vector3& area) {
+      return (face.corner_count == 3 ? 2.0 : 1.0) * area.norm() / length;
+    };
+    const double size = std::min(height(wall, wall_area), height(sheet, sheet_area));
     corners.push_back({start, end, size});
   }
   return corners;

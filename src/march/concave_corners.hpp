@@ -30,7 +30,10 @@ std::vector<ConcaveCorner> concave_corners(const Front& front, const std::vector
 // Per line, the largest layer thickness near the corners: a quarter of the corner's
 // size at the corner plus a quarter of the line's distance from it (the least over the
 // corners), so the first line off the corner at distance d reaches d / 2 and no face is
-// swallowed. Infinity where there is no corner.
+// swallowed (before the outermost step is raised to outer_layer_height times the line's
+// shortest front edge, which adds up to a quarter of the corner's size). Lines as far as
+// about four times the full stack from a corner are thinned. Infinity where there is no
+// corner. (Every line against every corner: a few hundred corners on a wing's base.)
 std::vector<double> corner_thickness_limits(const std::vector<ConcaveCorner>& corners,
                                             const std::vector<Vector3>& points);
 

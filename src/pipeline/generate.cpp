@@ -162,10 +162,14 @@ BoundaryLayer march_stage(const SurfaceMesh& surface, const MarchOptions& march_
            std::to_string(layers.mesh.cell_count(CellType::prism)) + " prisms, first spacing " +
            std::to_string(layers.report.first_spacing) + " m, thickness " +
            std::to_string(layers.report.total_thickness) + " m");
-  if (layers.report.thinned_lines > 0)
+  if (layers.report.thinned_lines > 0) {
+    std::ostringstream thinnest;
+    thinnest.precision(3);
+    thinnest << std::scientific << layers.report.thinnest_stack;
     log.info("march: " + std::to_string(layers.report.thinned_lines) +
-             " lines near a blunt base's corners with the wake in thinner stacks, down to " +
-             std::to_string(layers.report.thinnest_stack) + " m");
+             " lines near a blunt base's corners with the wake in thinner stacks, down to " + thinnest.str() +
+             " m");
+  }
   if (layers.report.stopped_faces > 0) {
     const StoppedRegion& lowest = layers.report.stopped.front();  // sorted by layer
     log.warning("march: growth stopped early on " + std::to_string(layers.report.stopped_faces) + " faces (" +
@@ -206,7 +210,7 @@ InterfaceResult interface_stage(const BoundaryLayer& layers, const GenerateOptio
     log.info("interface: " + seconds_text(report.stages.back().seconds) + ", " +
              std::to_string(interface.pyramids) + " pyramids, " + std::to_string(interface.tetrahedra) +
              " tetrahedra, hull of " + std::to_string(interface.hull.size()) + " triangles, " +
-             std::to_string(interface.lowered_caps) + " caps lowered clear of the hull, " +
+             std::to_string(interface.lowered_caps) + " caps lowered (clear of the hull or level with a neighbour), " +
              std::to_string(interface.stacks) + " outer cells split with the " +
              std::to_string(interface.stacked_cells - interface.stacks) + " cells under them");
   return interface;

@@ -59,6 +59,7 @@ void check_wing(const march_surfaces::TestWing& wing) {
   EXPECT_LT(metrics.maximum_line_turn_degrees, baseline.maximum_line_turn_degrees);
   EXPECT_LE(layer.report.stopped_faces, plain.report.stopped_faces);
   EXPECT_EQ(metrics.invalid_cells, 0);
+  EXPECT_EQ(layer.report.thinned_lines, 0);  // a sharp trailing edge is no concave corner
   EXPECT_GE(metrics.fraction_within_2_degrees, 0.99);
   EXPECT_EQ(layer.report.stopped_faces, 0);
   // Lines starting in the symmetry plane stay exactly in it.
@@ -180,6 +181,17 @@ TEST(MarchWing, BluntBaseWithAWakeGrowsEveryLayerRoundItsCorners) {
     full += (top - start).norm() > 0.95 * layer.report.total_thickness;
   }
   EXPECT_EQ(full, lines);
+  // Every line from the wing (the base's included), thinned or not, keeps the wall's
+  // first step (its y+); the wake's lines relax theirs downstream by design.
+  for (std::size_t c = 0; c < layer.column_points.size(); ++c) {
+    if (surface.points[static_cast<std::size_t>(layer.column_node[c])].x() > 1.0 + 1e-9) continue;
+    const std::vector<Index>& points = layer.column_points[c];
+    ASSERT_GE(points.size(), 2u);
+    const double first = (layer.mesh.points[static_cast<std::size_t>(points[1])] -
+                          layer.mesh.points[static_cast<std::size_t>(points[0])])
+                             .norm();
+    EXPECT_NEAR(first, layer.report.first_spacing, 0.01 * layer.report.first_spacing) << "line " << c;
+  }
 }
 
 // generate lowers the layers round a place where the hull crossed itself. A stop whose

@@ -112,7 +112,7 @@ struct InterfaceResult {
   std::size_t pyramids = 0;
   std::size_t tetrahedra = 0;
   std::size_t capped_cells = 0;  // kept whole with pyramids outside (see InterfaceOptions)
-  std::size_t lowered_caps = 0;  // marked caps brought down where they crossed the hull
+  std::size_t lowered_caps = 0;  // marked caps brought down: clear of the hull, or level with a neighbour
   std::size_t stacks = 0;        // outer hexahedra split with cells under them
   std::size_t stacked_cells = 0;  // the hexahedra those stacks hold
 };
