@@ -5,6 +5,7 @@
 #include <cmath>
 #include <map>
 
+#include "interface/cap_clearance.hpp"
 #include "mixmesh/core/error.hpp"
 #include "mixmesh/interface/interface_split.hpp"
 #include "mixmesh/mesh/cell_geometry.hpp"
@@ -436,10 +437,14 @@ TEST(InterfaceSplit, CellsOfMarkedOuterQuadsAreCappedNotSplit) {
 // marked, so the cells 3 and 4 of rows 1–3 are capped (rows 0 and 4 reach the footprint). Returns each cap's
 // height over its quad's middle, by that middle.
 std::vector<std::pair<Vector3, double>> cap_heights(const Vector3& size, double slope,
-                                                    InterfaceResult& result) {
+                                                    InterfaceResult& result, bool left_only = false) {
+  // The tops' rise at x: slope times the distance from x = 4 size.x (on the left only).
+  const auto rise = [&](double x) {
+    const double from_middle = x - 4.0 * size.x();
+    return slope * (left_only ? std::max(0.0, -from_middle) : std::abs(from_middle));
+  };
   MixedMesh input = hexahedron_block(8, 5, 1, [&](const Vector3& point) {
-    return Vector3(size.x() * point.x(), size.y() * point.y(),
-                   point.z() + slope * std::abs(size.x() * (point.x() - 4.0)));
+    return Vector3(size.x() * point.x(), size.y() * point.y(), point.z() + rise(size.x() * point.x()));
   });
   const int marked = input.marker("hull_side");
   for (std::size_t face = 0; face < input.face_count(FaceType::quad); ++face) {
@@ -447,7 +452,7 @@ std::vector<std::pair<Vector3, double>> cap_heights(const Vector3& size, double 
     Vector3 middle = Vector3::Zero();
     for (int corner = 0; corner < 4; ++corner)
       middle += 0.25 * input.points[static_cast<std::size_t>(nodes[corner])];
-    const double top = 1.0 + slope * std::abs(middle.x() - 4.0 * size.x());
+    const double top = 1.0 + rise(middle.x());
     if (std::abs(middle.z() - top) < 1e-12 && middle.x() > 2.0 * size.x() && middle.x() < 6.0 * size.x())
       input.faces(FaceType::quad).markers[face] = marked;
   }
@@ -461,7 +466,7 @@ std::vector<std::pair<Vector3, double>> cap_heights(const Vector3& size, double 
       middle += 0.25 * result.mesh.points[static_cast<std::size_t>(nodes[corner])];
     // Caps stand on the tops over x 3–5 size.x; the split cells' pyramids have their
     // centre as apex, inside the cell, below its top.
-    const double top = 1.0 + slope * std::abs(middle.x() - 4.0 * size.x());
+    const double top = 1.0 + rise(middle.x());
     if (std::abs(middle.z() - top) > 1e-9 || middle.x() < 3.0 * size.x() || middle.x() > 5.0 * size.x())
       continue;
     heights.push_back({middle, (result.mesh.points[static_cast<std::size_t>(nodes[4])] - middle).norm()});
@@ -512,6 +517,58 @@ TEST(InterfaceSplit, CapsOverAGentleFoldStandAlongTheirMeanNormal) {
       }
   EXPECT_EQ(result.lowered_caps, 0u);
   for (const auto& [middle, height] : heights) EXPECT_NEAR(height, 2.0, 1e-9);
+}
+
+// Two caps side by side on coplanar unit quads, one come down to 0.5 (as if it had
+// crossed the hull) and the other still 2 high: the tall one comes down to stand no more
+// above its neighbour than their middles are apart (1), so to 1.5; nothing crosses.
+TEST(InterfaceSplit, NeighbouringCapsStandWithinFortyFiveDegrees) {
+  MixedMesh mesh;
+  for (double x : {0.0, 1.0, 2.0})
+    for (double y : {0.0, 1.0}) mesh.points.push_back(Vector3(x, y, 0.0));
+  // Corners 0 (0,0) 1 (0,1) 2 (1,0) 3 (1,1) 4 (2,0) 5 (2,1); quads wound upwards.
+  const std::array<std::array<Index, 4>, 2> quads{{{0, 2, 3, 1}, {2, 4, 5, 3}}};
+  std::vector<interface_detail::TallCap> caps;
+  std::vector<std::array<Index, 3>> hull;
+  for (std::size_t k = 0; k < 2; ++k) {
+    const Vector3 middle(0.5 + static_cast<double>(k), 0.5, 0.0);
+    const double height = k == 0 ? 0.5 : 2.0;
+    const Index apex = static_cast<Index>(mesh.points.size());
+    mesh.points.push_back(middle + height * Vector3::UnitZ());
+    const auto& quad = quads[k];
+    caps.push_back({apex,
+                    middle,
+                    Vector3::UnitZ(),
+                    Vector3::UnitZ(),
+                    height,
+                    0.25,
+                    {quad[0], quad[1], quad[2], quad[3], apex},
+                    hull.size()});
+    for (std::size_t corner = 0; corner < 4; ++corner)
+      hull.push_back({quad[corner], quad[(corner + 1) % 4], apex});
+  }
+  // A flat frame round the two quads, out to 10 away, so that the footprint (the hull's
+  // free edges) is too far to bound either cap.
+  const Index frame = static_cast<Index>(mesh.points.size());
+  for (const Vector3& corner :
+       {Vector3(-10, -10, 0), Vector3(12, -10, 0), Vector3(12, 11, 0), Vector3(-10, 11, 0)})
+    mesh.points.push_back(corner);
+  const Index a = frame, b = frame + 1, c = frame + 2, d = frame + 3;
+  for (const std::array<Index, 3>& triangle : std::vector<std::array<Index, 3>>{{a, b, 4},
+                                                                                {a, 4, 2},
+                                                                                {a, 2, 0},
+                                                                                {b, c, 5},
+                                                                                {b, 5, 4},
+                                                                                {c, d, 1},
+                                                                                {c, 1, 3},
+                                                                                {c, 3, 5},
+                                                                                {d, a, 0},
+                                                                                {d, 0, 1}})
+    hull.push_back(triangle);
+  EXPECT_EQ(interface_detail::lower_crossing_caps(mesh, hull, caps), 1u);
+  EXPECT_NEAR(caps[0].height, 0.5, 1e-12);
+  EXPECT_NEAR(caps[1].height, 1.5, 1e-9);
+  EXPECT_NEAR(mesh.points[static_cast<std::size_t>(caps[1].apex)].z(), 1.5, 1e-9);
 }
 
 // Next to the footprint (the hull's free edges, here the block's sides) a cap stands no
