@@ -437,11 +437,11 @@ TEST(InterfaceSplit, CellsOfMarkedOuterQuadsAreCappedNotSplit) {
 // marked, so the cells 3 and 4 of rows 1–3 are capped (rows 0 and 4 reach the footprint). Returns each cap's
 // height over its quad's middle, by that middle.
 std::vector<std::pair<Vector3, double>> cap_heights(const Vector3& size, double slope,
-                                                    InterfaceResult& result, bool left_only = false) {
-  // The tops' rise at x: slope times the distance from x = 4 size.x (on the left only).
+                                                    InterfaceResult& result) {
+  // The tops' rise at x: slope times the distance from x = 4 size.x.
   const auto rise = [&](double x) {
     const double from_middle = x - 4.0 * size.x();
-    return slope * (left_only ? std::max(0.0, -from_middle) : std::abs(from_middle));
+    return slope * std::abs(from_middle);
   };
   MixedMesh input = hexahedron_block(8, 5, 1, [&](const Vector3& point) {
     return Vector3(size.x() * point.x(), size.y() * point.y(), point.z() + rise(size.x() * point.x()));
