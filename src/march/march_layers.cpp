@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <numeric>
 #include <sstream>
 
 #include <Eigen/Geometry>
@@ -535,10 +536,9 @@ void thin_near_concave_corners(const Front& front, const std::vector<double>& st
   if (corners.empty()) return;
   const std::vector<double> limit = march_detail::corner_thickness_limits(corners, points);
   for (std::size_t c = 0; c < points.size(); ++c) {
+    if (!std::isfinite(limit[c])) continue;
     const std::vector<double>& own = lines.own_steps[c].empty() ? steps : lines.own_steps[c];
-    double thickness = 0.0;
-    for (double step : own) thickness += step;
-    if (!(limit[c] < thickness)) continue;
+    if (std::accumulate(own.begin(), own.end(), 0.0) <= limit[c]) continue;
     lines.own_steps[c] = steps_within_thickness(own, limit[c]);
     lines.thinnest_stack = lines.thinned_lines == 0 ? limit[c] : std::min(lines.thinnest_stack, limit[c]);
     ++lines.thinned_lines;
