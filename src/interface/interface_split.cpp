@@ -129,10 +129,11 @@ void for_each_stack_piece(CellType type, const std::vector<Vector3>& points, con
 }
 
 // The quality of a split about the last point of `points`: the worst piece's smallest
-// corner Jacobian (scaled; negative when a piece is inverted or tangled) and the largest
-// dihedral angle of its tetrahedra.
+// corner Jacobian (scaled; negative when a piece is inverted or tangled), the same of its
+// pyramids alone, and the largest dihedral angle of its tetrahedra.
 struct PieceQuality {
   double worst = 1.0;
+  double worst_pyramid = 1.0;
   double largest_dihedral = 0.0;
 };
 
@@ -144,8 +145,9 @@ PieceQuality piece_quality(CellType type, const std::vector<Vector3>& points,
   for_each_stack_piece(
       type, points, levels, flipped, options, apex, [&](CellType piece, const Index* corners, bool) {
         const CellShape shape = cell_shape(piece, points, corners);
-        quality.worst = std::min(quality.worst,
-                                 shape.valid() ? shape.min_corner_jacobian : -1.0 - shape.negative_corners);
+        const double corner = shape.valid() ? shape.min_corner_jacobian : -1.0 - shape.negative_corners;
+        quality.worst = std::min(quality.worst, corner);
+        if (piece == CellType::pyramid) quality.worst_pyramid = std::min(quality.worst_pyramid, corner);
         if (piece == CellType::tetrahedron) {
           auto at = [&](int k) -> const Vector3& { return points[static_cast<std::size_t>(corners[k])]; };
           quality.largest_dihedral =
@@ -155,10 +157,41 @@ PieceQuality piece_quality(CellType type, const std::vector<Vector3>& points,
   return quality;
 }
 
+// How far a split misses the stack bounds, as one number: the larger of its
+// tetrahedra's degrees above options.stack_dihedral per 5 degrees and the halvings its
+// pyramids stand below options.stack_pyramid_quality; not positive when it meets both.
+// (One unit on either side is a step towards a floor of the robustness suite: 170 and
+// 175 degrees, a scaled Jacobian of 1e-3 for the default bound 2e-3.)
+double shortfall(const PieceQuality& quality, const InterfaceOptions& options) {
+  if (quality.worst <= 0.0) return std::numeric_limits<double>::infinity();
+  return std::max((quality.largest_dihedral - options.stack_dihedral) / 10.0,
+                  std::log2(options.stack_pyramid_quality / quality.worst_pyramid));
+}
+
+// The middle of a stack: the mean of the nodes of its top and of its inner face (the
+// nodes in one level only).
+Vector3 stack_middle(CellType type, const std::vector<Vector3>& points, const std::vector<Level>& levels) {
+  std::map<Index, int> uses;
+  for (const Level& level : levels)
+    for (int corner = 0; corner < node_count(type); ++corner) ++uses[level.nodes[corner]];
+  Vector3 sum = Vector3::Zero();
+  int count = 0;
+  for (const auto& [node, times] : uses)
+    if (times == 1) sum += points[static_cast<std::size_t>(node)], ++count;
+  return sum / static_cast<double>(count);
+}
+
 // The split point: the centre (Wild Fig. 2; of a stack, the mean of its cells' centres)
 // unless a piece about it is inverted or nearly so (a thin cell with a warped face), then
 // the best point a compass search around the centre finds. The last point of `points`
 // is the scratch slot for the candidate. Returns the quality about that point in `best`.
+//
+// The mean of a stack's centres sits low in it (a fifth of the way up 16 layers growing
+// by 1.2), which keeps the tetrahedra on its top steep but leaves the pyramid on its
+// inner quad flat under a long cell (a scaled Jacobian of about twice the apex's height
+// over the quad's length). Where that pyramid misses options.stack_pyramid_quality, the
+// point slides up towards the stack's middle, in quarters, to the first that meets both
+// bounds, else to the one that misses them least.
 Vector3 split_point(CellType type, std::vector<Vector3>& points, const std::vector<Level>& levels,
                     unsigned flipped, const InterfaceOptions& options, PieceQuality& best) {
   Vector3 centre = Vector3::Zero();
@@ -166,6 +199,15 @@ Vector3 split_point(CellType type, std::vector<Vector3>& points, const std::vect
   centre /= static_cast<double>(levels.size());
   points.back() = centre;
   best = piece_quality(type, points, levels, flipped, options);
+  if (levels.size() > 1 && best.worst > 0.0 && best.worst_pyramid < options.stack_pyramid_quality) {
+    const Vector3 low = centre;
+    const Vector3 middle = stack_middle(type, points, levels);
+    for (int quarter = 1; quarter <= 4 && shortfall(best, options) > 0.0; ++quarter) {
+      points.back() = low + 0.25 * quarter * (middle - low);
+      const PieceQuality quality = piece_quality(type, points, levels, flipped, options);
+      if (shortfall(quality, options) < shortfall(best, options)) best = quality, centre = points.back();
+    }
+  }
   double step = 0.0;
   for (const Level& level : levels)
     for (int corner = 0; corner < node_count(type); ++corner)
@@ -198,10 +240,15 @@ struct SplitChoice {
   Vector3 point = Vector3::Zero();
   unsigned flipped = 0u;
   double worst = 0.0;
+  double worst_pyramid = 0.0;
   double largest_dihedral = 180.0;
   std::vector<std::size_t> cells;
   std::vector<unsigned> skipped_faces;  // per cell: the faces inside the stack
 };
+
+double shortfall(const SplitChoice& choice, const InterfaceOptions& options) {
+  return shortfall(PieceQuality{choice.worst, choice.worst_pyramid, choice.largest_dihedral}, options);
+}
 
 // The split of one cell or stack (`levels`, in mesh numbering). The search works on a
 // copy of the stack's nodes alone, numbered in the order of their numbers in the mesh
@@ -239,6 +286,7 @@ SplitChoice choose_split(CellType type, const std::vector<Vector3>& mesh_points,
   PieceQuality quality;
   choice.point = split_point(type, points, levels, choice.flipped, options, quality);
   choice.worst = quality.worst;
+  choice.worst_pyramid = quality.worst_pyramid;
   choice.largest_dihedral = quality.largest_dihedral;
   const unsigned combinations = 1u << std::min<std::size_t>(outer_quads.size(), 4);
   for (unsigned combination = 1; combination < combinations && choice.worst <= 0.0; ++combination) {
@@ -248,8 +296,13 @@ SplitChoice choose_split(CellType type, const std::vector<Vector3>& mesh_points,
     PieceQuality candidate_quality;
     const Vector3 candidate_point = split_point(type, points, levels, candidate, options, candidate_quality);
     if (candidate_quality.worst > choice.worst)
-      choice = {
-          candidate_point, candidate, candidate_quality.worst, candidate_quality.largest_dihedral, {}, {}};
+      choice = {candidate_point,
+                candidate,
+                candidate_quality.worst,
+                candidate_quality.worst_pyramid,
+                candidate_quality.largest_dihedral,
+                {},
+                {}};
   }
   return choice;
 }
@@ -290,16 +343,18 @@ FaceNeighbours same_type_neighbours(const MixedMesh& mesh, CellType type,
   return neighbours;
 }
 
-// The split of an outer cell. An outer hexahedron (or prism) whose split about its centre leaves a
-// tetrahedron with a dihedral angle above options.stack_dihedral (a layer cell much
-// thinner than wide: the outer quad's two tetrahedra have their apex half the cell's
-// height under the quad's diagonal, so their angle at the apex edge opposite it is
-// 180 degrees less about twice atan(h / w)) is split together with the hexahedra under
-// it, as one stack about its middle: the lowest stack whose tetrahedra meet the bound,
-// else the best one. The stack's side quads keep their pyramids, so neighbouring
-// columns conform whatever their own stack; a side quad that faces the far field (a
-// column above a neighbour whose growth stopped) gets its two tetrahedra as in a single
-// cell. The top is the largest outer quad; capped cells never join a stack.
+// The split of an outer cell. An outer hexahedron (or prism) whose split about its
+// centre leaves a tetrahedron with a dihedral angle above options.stack_dihedral (a layer
+// cell much thinner than wide: the outer quad's two tetrahedra have their apex half the
+// cell's height under the quad's diagonal, so their angle at the apex edge opposite it is
+// 180 degrees less about twice atan(h / w)), or a pyramid flatter than
+// options.stack_pyramid_quality (the pyramid on the inner quad of a cell h high and L
+// long has a scaled Jacobian of about h / L), is split together with the hexahedra under
+// it, as one stack about its middle: the lowest stack that meets both bounds, else the
+// best one. The stack's side quads keep their pyramids, so neighbouring columns conform
+// whatever their own stack; a side quad that faces the far field (a column above a
+// neighbour whose growth stopped) gets its two tetrahedra as in a single cell. The top
+// is the largest outer quad; capped cells never join a stack.
 SplitChoice choose_stack(const MixedMesh& mesh, CellType type, std::size_t cell,
                          const std::vector<unsigned>& outer_faces, const std::vector<char>& capped,
                          const FaceNeighbours& neighbours, const InterfaceOptions& options) {
@@ -307,7 +362,8 @@ SplitChoice choose_stack(const MixedMesh& mesh, CellType type, std::size_t cell,
   SplitChoice best = choose_split(type, mesh.points, levels, options);
   best.cells = {cell};
   best.skipped_faces = {0u};
-  if (best.worst <= 0.0 || best.largest_dihedral <= options.stack_dihedral) return best;
+  double best_shortfall = shortfall(best, options);
+  if (best.worst <= 0.0 || best_shortfall <= 0.0) return best;
   const CellDescriptor& shape = descriptor(type);
   int top = -1;
   double top_area = 0.0;
@@ -320,7 +376,7 @@ SplitChoice choose_stack(const MixedMesh& mesh, CellType type, std::size_t cell,
   }
   std::vector<std::size_t> cells{cell};
   int down = opposite_face(type, top);
-  double previous = best.largest_dihedral;
+  SplitChoice previous = best;
   while (static_cast<int>(cells.size()) < options.stack_cells && down >= 0 &&
          !((levels.back().outer_faces >> down) & 1u)) {
     const auto [below, up] = neighbours[cells.back() * static_cast<std::size_t>(shape.face_count) +
@@ -332,14 +388,22 @@ SplitChoice choose_stack(const MixedMesh& mesh, CellType type, std::size_t cell,
     levels.push_back({mesh.cell(type, static_cast<std::size_t>(below)), below_outer, 1u << up});
     cells.push_back(static_cast<std::size_t>(below));
     SplitChoice candidate = choose_split(type, mesh.points, levels, options);
-    if (candidate.worst > 0.0 && candidate.largest_dihedral < best.largest_dihedral) {
-      best = std::move(candidate);
+    const double candidate_shortfall = shortfall(candidate, options);
+    if (candidate_shortfall < best_shortfall) {
+      best = candidate;
+      best_shortfall = candidate_shortfall;
       best.cells = cells;
       for (const Level& level : levels) best.skipped_faces.push_back(level.skipped_faces);
     }
-    // The angle falls as the stack grows until it is about as high as wide.
-    if (best.largest_dihedral <= options.stack_dihedral || candidate.largest_dihedral >= previous) break;
-    previous = candidate.largest_dihedral;
+    if (best_shortfall <= 0.0) break;
+    // The angle falls as the stack grows until it is about as high as wide, and the
+    // pyramid on its inner quad stands up as the stack grows until it is about as high
+    // as long; past both, a higher stack only loses.
+    const bool angle_falls = candidate.largest_dihedral < previous.largest_dihedral;
+    const bool pyramid_rises = candidate.worst_pyramid > previous.worst_pyramid &&
+                               previous.worst_pyramid < options.stack_pyramid_quality;
+    if (!angle_falls && !pyramid_rises) break;
+    previous = std::move(candidate);
     down = opposite_face(type, up);
   }
   return best;
@@ -651,7 +715,8 @@ void replace_outer_cells(const MixedMesh& mesh, const OuterCells& outer, const C
 InterfaceResult split_interface(const MixedMesh& mesh, const OuterLayer& layer,
                                 const InterfaceOptions& options) {
   for (const auto& [option, value] : {std::pair{"cap_height", options.cap_height},
-                                      std::pair{"marked_cap_height", options.marked_cap_height}})
+                                      std::pair{"marked_cap_height", options.marked_cap_height},
+                                      std::pair{"stack_pyramid_quality", options.stack_pyramid_quality}})
     if (!(value > 0.0) || !std::isfinite(value))
       throw Error(std::string("interface: ") + option + " must be > 0, got " + std::to_string(value));
   const FaceConnectivity connectivity = validate(mesh, layer);

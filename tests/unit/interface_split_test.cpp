@@ -167,6 +167,39 @@ TEST(InterfaceSplit, ThinOuterCellsAreSplitWithTheCellsUnderThem) {
   expect_sound_split(input, deepest);
 }
 
+// The smallest scaled corner Jacobian of the mesh's pyramids.
+double worst_pyramid(const MixedMesh& mesh) {
+  double worst = 1.0;
+  for (std::size_t cell = 0; cell < mesh.cell_count(CellType::pyramid); ++cell)
+    worst = std::min(
+        worst,
+        cell_shape(CellType::pyramid, mesh.points, mesh.cell(CellType::pyramid, cell)).min_corner_jacobian);
+  return worst;
+}
+
+// Layers 0.2 mm thick on faces 1 mm wide and 0.45 m long, as where a blunt base meets a
+// wake under long spanwise cells. Stacked for their tetrahedra alone (the stack about
+// the mean of its cells' centres), the pyramid on a stack's inner quad stays flat: a
+// scaled Jacobian under the suite's floor of 1e-3. Stacked until it stands up, it meets
+// stack_pyramid_quality, and no tetrahedron gets flatter.
+TEST(InterfaceSplit, CellsMuchThinnerThanLongAreStackedUntilTheirPyramidsStandUp) {
+  const MixedMesh input = hexahedron_block(
+      3, 3, 12, [](const Vector3& p) { return Vector3(0.001 * p.x(), 0.45 * p.y(), 0.0002 * p.z()); });
+  InterfaceOptions flat;
+  flat.stack_pyramid_quality = 1e-12;
+  const InterfaceResult for_tetrahedra = split_interface(input, top_layer(3, 3, 12), flat);
+  EXPECT_LT(worst_pyramid(for_tetrahedra.mesh), 1e-3);
+  EXPECT_LE(largest_tetrahedron_dihedral(for_tetrahedra.mesh), flat.stack_dihedral);
+
+  const InterfaceResult stacked = split_interface(input, top_layer(3, 3, 12));
+  EXPECT_EQ(stacked.stacks, 9u);
+  EXPECT_GE(worst_pyramid(stacked.mesh), InterfaceOptions().stack_pyramid_quality);
+  EXPECT_LE(largest_tetrahedron_dihedral(stacked.mesh), InterfaceOptions().stack_dihedral);
+  EXPECT_GT(stacked.stacked_cells, for_tetrahedra.stacked_cells);
+  EXPECT_EQ(stacked.mesh.points.size(), input.points.size() + 9) << "one split point per column";
+  expect_sound_split(input, stacked);
+}
+
 TEST(InterfaceSplit, DiagonalRulesAreDeterministic) {
   // A rhombus top whose long diagonal a-c runs through the smallest top node a.
   MixedMesh input = hexahedron_block(1, 1, 1, [](const Vector3& p) { return p; });

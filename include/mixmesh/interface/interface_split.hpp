@@ -94,6 +94,11 @@ struct InterfaceOptions {
   // stack_cells - 1 hexahedra under it, as one stack about its middle (see
   // docs/interface.md); stack_cells 1 splits the outermost cells alone.
   double stack_dihedral = 160.0;
+  // ... or whose split leaves a pyramid with a scaled corner Jacobian below
+  // stack_pyramid_quality (the pyramid on the inner quad of a cell much thinner than long,
+  // as where a blunt base meets a wake: thin stacks under spanwise cells up to metres
+  // long); twice the robustness suite's floor of 1e-3.
+  double stack_pyramid_quality = 2e-3;
   int stack_cells = 16;
 };
 
