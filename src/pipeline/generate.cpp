@@ -373,6 +373,11 @@ GenerateResult generate(const GenerateOptions& options, const Log& log) {
   }();
   const double seconds = watch.seconds();
   log.info("surface: " + seconds_text(seconds) + ", " + std::to_string(surface.points.size()) + " points");
+  for (const StructuredPatch& patch : surface.structured)
+    if (patch.name == "base" && patch.ni - 1 < options.surface.options.base_cells)
+      log.info("surface: " + std::to_string(patch.ni - 1) + " faces across the base instead of base_cells " +
+               std::to_string(options.surface.options.base_cells) +
+               ", which would be more than base_face_aspect times shorter than the spanwise faces");
   GenerateResult result = generate_from_surface(surface, options, log);
   result.report.stages.insert(result.report.stages.begin(), StageTiming{"surface", seconds});
   result.report.seconds += seconds;

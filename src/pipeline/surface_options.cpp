@@ -16,6 +16,7 @@ SurfaceOptions read_surface_options(config::Section& table) {
   table.read("tip_spacing", options.tip_spacing, fraction);
   table.read("base_cells", options.base_cells, config::Bounds::at_least(2));
   if (options.base_cells % 2 != 0) table.fail("base_cells", "'surface.base_cells' must be even");
+  table.read("base_face_aspect", options.base_face_aspect, config::Bounds::non_negative());
   if (std::optional<config::Section> wake = table.optional_section("wake")) {
     wake->read("enabled", options.wake.enabled);
     wake->read("length", options.wake.length, config::Bounds::positive());

@@ -128,6 +128,7 @@ TEST(SurfaceConfig, EachBadInputIsOneErrorWithFileAndLine) {
   // Other bad values.
   expect_error(naca_wing + "[surface]\nchordwise_cells = 4\n", "case.toml:7:", "chordwise_cells");
   expect_error(naca_wing + "[surface]\nbase_cells = 3\n", "case.toml:7:", "even");
+  expect_error(naca_wing + "[surface]\nbase_face_aspect = -1\n", "case.toml:7:", "base_face_aspect");
   expect_error("[wing]\nnaca = \"0012\"\nroot_chord = 1.0\nsemi_span = 2.0\n", "case.toml:1:", "taper");
   expect_error("[wing]\nnaca = \"9x12\"\nroot_chord = 1.0\nsemi_span = 2.0\ntaper = 0.5\n",
                "case.toml:2:", "NACA");

@@ -394,6 +394,32 @@ TEST(WingSurface, BluntTrailingEdgeIsClosedOrKeptAsABase) {
   EXPECT_GT(enclosed_volume(based.points, faces_of(based).wall), 0.0);
 }
 
+// A base 1.5 mm thick at the tip under spanwise faces about a metre long: four faces
+// across it would be 0.4 mm wide, 2,500 times shorter than the spanwise faces, and the
+// split layer's pyramids beside them flat; it gets two. With base_face_aspect 0, four.
+TEST(WingSurface, BaseUnderLongSpanwiseFacesGetsFewerFaces) {
+  NacaOptions open;
+  open.closed_trailing_edge = false;
+  open.points_per_side = 81;
+  ClassicPlanform planform;
+  planform.taper = 0.6;
+  planform.semi_span = 10.0;
+  WingDefinition wing = classic_wing(planform, naca_airfoil("0012", open));
+  wing.blunt_trailing_edge = TrailingEdge::base;
+  SurfaceOptions options = coarse_options();
+  const SurfaceMesh fewer = generate_wing_surface(wing, options);
+  ASSERT_EQ(fewer.structured.size(), 3u);
+  EXPECT_EQ(fewer.structured[1].name, "base");
+  EXPECT_EQ(fewer.structured[1].ni, 3);
+  EXPECT_EQ(fewer.structured[2].node(0, 3), fewer.structured[1].node(1, 3)) << "the wake leaves the middle";
+  expect_closed_and_consistently_oriented(fewer);
+
+  options.base_face_aspect = 0.0;
+  const SurfaceMesh all = generate_wing_surface(wing, options);
+  EXPECT_EQ(all.structured[1].ni, options.base_cells + 1);
+  expect_closed_and_consistently_oriented(all);
+}
+
 // Where the wake leaves a base's middle at the tip, the march splits the cap triangle
 // there that straddles the sheet's plane. Left to the refinement that triangle had an
 // edge on the base (two cap triangles at the node), and its column's corner on the base

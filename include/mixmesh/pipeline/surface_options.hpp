@@ -8,7 +8,9 @@
 //   trailing_edge_spacing = 0.002
 //   root_spacing = 0.01              # fraction of the semi-span
 //   tip_spacing = 0.004
-//   base_cells = 4                   # across a blunt base (even)
+//   base_cells = 4                   # across a blunt base (even), at most:
+//   base_face_aspect = 500.0         # fewer while a base face is more than this many times
+//                                    # shorter than the spanwise faces (0: off)
 //   [surface.wake]
 //   enabled = true
 //   length = 10.0                    # root chords behind the last trailing edge

@@ -50,6 +50,11 @@ struct SurfaceOptions {
   double root_spacing = 0.01;            // fraction of the semi-span
   double tip_spacing = 0.004;            // fraction of the semi-span
   int base_cells = 4;                    // across a blunt base (even)
+  // Fewer faces across a base (by twos, down to 2) while its narrowest would be more than
+  // this many times shorter than the spanwise faces beside it: the split layer's
+  // pyramids there have a scaled Jacobian of about the face's width over the spanwise
+  // face's length (docs/surface.md). 0: always base_cells.
+  double base_face_aspect = 500.0;
   WakeOptions wake;
   TipCapOptions tip;
 };
