@@ -371,13 +371,23 @@ TEST(WingSurface, OneraM6PressureStationCutsReproduceTheAirfoil) {
   }
 }
 
-TEST(WingSurface, BluntTrailingEdgeIsClosedOrKeptAsABase) {
+namespace {
+
+// A NACA 0012 wing of taper 0.6 whose section keeps its open trailing edge.
+WingDefinition open_edged_wing(double semi_span) {
   NacaOptions open;
   open.closed_trailing_edge = false;
   open.points_per_side = 81;
   ClassicPlanform planform;
   planform.taper = 0.6;
-  WingDefinition wing = classic_wing(planform, naca_airfoil("0012", open));
+  planform.semi_span = semi_span;
+  return classic_wing(planform, naca_airfoil("0012", open));
+}
+
+}  // namespace
+
+TEST(WingSurface, BluntTrailingEdgeIsClosedOrKeptAsABase) {
+  WingDefinition wing = open_edged_wing(1.0);
   const SurfaceMesh closed = generate_wing_surface(wing, coarse_options());
   EXPECT_EQ(closed.structured[0].node(0, 3), closed.structured[0].node(closed.structured[0].ni - 1, 3));
   expect_closed_and_consistently_oriented(closed);
@@ -398,13 +408,7 @@ TEST(WingSurface, BluntTrailingEdgeIsClosedOrKeptAsABase) {
 // across it would be 0.4 mm wide, 2,500 times shorter than the spanwise faces, and the
 // split layer's pyramids beside them flat; it gets two. With base_face_aspect 0, four.
 TEST(WingSurface, BaseUnderLongSpanwiseFacesGetsFewerFaces) {
-  NacaOptions open;
-  open.closed_trailing_edge = false;
-  open.points_per_side = 81;
-  ClassicPlanform planform;
-  planform.taper = 0.6;
-  planform.semi_span = 10.0;
-  WingDefinition wing = classic_wing(planform, naca_airfoil("0012", open));
+  WingDefinition wing = open_edged_wing(10.0);
   wing.blunt_trailing_edge = TrailingEdge::base;
   SurfaceOptions options = coarse_options();
   const SurfaceMesh fewer = generate_wing_surface(wing, options);
