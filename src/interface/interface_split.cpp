@@ -157,15 +157,36 @@ PieceQuality piece_quality(CellType type, const std::vector<Vector3>& points,
   return quality;
 }
 
-// How far a split misses the stack bounds, as one number: the larger of its
-// tetrahedra's degrees above options.stack_dihedral per 5 degrees and the halvings its
-// pyramids stand below options.stack_pyramid_quality; not positive when it meets both.
-// (One unit on either side is a step towards a floor of the robustness suite: 170 and
-// 175 degrees, a scaled Jacobian of 1e-3 for the default bound 2e-3.)
-double shortfall(const PieceQuality& quality, const InterfaceOptions& options) {
-  if (quality.worst <= 0.0) return std::numeric_limits<double>::infinity();
-  return std::max((quality.largest_dihedral - options.stack_dihedral) / 10.0,
-                  std::log2(options.stack_pyramid_quality / quality.worst_pyramid));
+// How far a split misses the stack bounds: its tetrahedra's degrees above
+// options.stack_dihedral per 10 degrees and the halvings its pyramids stand below
+// options.stack_pyramid_quality (one unit each is a floor of the robustness suite: 170
+// degrees for the share of flat tetrahedra, a scaled Jacobian of 1e-3 for the default
+// bound 2e-3); both not positive when it meets the bounds. Infinite when a piece is
+// inverted.
+struct Shortfall {
+  double angle = 0.0;
+  double pyramid = 0.0;
+  double worst() const { return std::max(angle, pyramid); }
+  double sum() const { return std::max(angle, 0.0) + std::max(pyramid, 0.0); }
+  bool met() const { return worst() <= 0.0; }
+};
+
+Shortfall shortfall(const PieceQuality& quality, const InterfaceOptions& options) {
+  constexpr double infinity = std::numeric_limits<double>::infinity();
+  if (quality.worst <= 0.0) return {infinity, infinity};
+  return {(quality.largest_dihedral - options.stack_dihedral) / 10.0,
+          std::log2(options.stack_pyramid_quality / quality.worst_pyramid)};
+}
+
+// Whether a split misses the bounds by less than another: by the larger shortfall, and
+// where those are alike (a hundredth of a unit) by the sum of both. The tie matters where
+// a pyramid no stack can mend sets the larger (the side quads of a stack over a base
+// face much narrower than long, docs/interface.md): the tetrahedra still choose.
+bool misses_less(const Shortfall& candidate, const Shortfall& best) {
+  constexpr double alike = 0.01;
+  if (candidate.worst() < best.worst() - alike) return true;
+  if (candidate.worst() > best.worst() + alike) return false;
+  return candidate.sum() < best.sum() - alike;
 }
 
 // The middle of a stack: the mean of the nodes of its top and of its inner face (the
@@ -202,10 +223,11 @@ Vector3 split_point(CellType type, std::vector<Vector3>& points, const std::vect
   if (levels.size() > 1 && best.worst > 0.0 && best.worst_pyramid < options.stack_pyramid_quality) {
     const Vector3 low = centre;
     const Vector3 middle = stack_middle(type, points, levels);
-    for (int quarter = 1; quarter <= 4 && shortfall(best, options) > 0.0; ++quarter) {
+    for (int quarter = 1; quarter <= 4 && !shortfall(best, options).met(); ++quarter) {
       points.back() = low + 0.25 * quarter * (middle - low);
       const PieceQuality quality = piece_quality(type, points, levels, flipped, options);
-      if (shortfall(quality, options) < shortfall(best, options)) best = quality, centre = points.back();
+      if (misses_less(shortfall(quality, options), shortfall(best, options)))
+        best = quality, centre = points.back();
     }
   }
   double step = 0.0;
@@ -246,7 +268,7 @@ struct SplitChoice {
   std::vector<unsigned> skipped_faces;  // per cell: the faces inside the stack
 };
 
-double shortfall(const SplitChoice& choice, const InterfaceOptions& options) {
+Shortfall shortfall(const SplitChoice& choice, const InterfaceOptions& options) {
   return shortfall(PieceQuality{choice.worst, choice.worst_pyramid, choice.largest_dihedral}, options);
 }
 
@@ -362,8 +384,8 @@ SplitChoice choose_stack(const MixedMesh& mesh, CellType type, std::size_t cell,
   SplitChoice best = choose_split(type, mesh.points, levels, options);
   best.cells = {cell};
   best.skipped_faces = {0u};
-  double best_shortfall = shortfall(best, options);
-  if (best.worst <= 0.0 || best_shortfall <= 0.0) return best;
+  Shortfall best_shortfall = shortfall(best, options);
+  if (best.worst <= 0.0 || best_shortfall.met()) return best;
   const CellDescriptor& shape = descriptor(type);
   int top = -1;
   double top_area = 0.0;
@@ -388,19 +410,24 @@ SplitChoice choose_stack(const MixedMesh& mesh, CellType type, std::size_t cell,
     levels.push_back({mesh.cell(type, static_cast<std::size_t>(below)), below_outer, 1u << up});
     cells.push_back(static_cast<std::size_t>(below));
     SplitChoice candidate = choose_split(type, mesh.points, levels, options);
-    const double candidate_shortfall = shortfall(candidate, options);
-    if (candidate_shortfall < best_shortfall) {
+    const Shortfall candidate_shortfall = shortfall(candidate, options);
+    if (misses_less(candidate_shortfall, best_shortfall)) {
       best = candidate;
       best_shortfall = candidate_shortfall;
       best.cells = cells;
       for (const Level& level : levels) best.skipped_faces.push_back(level.skipped_faces);
     }
-    if (best_shortfall <= 0.0) break;
+    if (best_shortfall.met()) break;
     // The angle falls as the stack grows until it is about as high as wide, and the
     // pyramid on its inner quad stands up as the stack grows until it is about as high
     // as long; past both, a higher stack only loses.
+    // (An inverted candidate neither ends the growth nor becomes the reference.)
+    if (candidate.worst <= 0.0) {
+      down = opposite_face(type, up);
+      continue;
+    }
     const bool angle_falls = candidate.largest_dihedral < previous.largest_dihedral;
-    const bool pyramid_rises = candidate.worst_pyramid > previous.worst_pyramid &&
+    const bool pyramid_rises = candidate.worst_pyramid > 1.01 * previous.worst_pyramid &&
                                previous.worst_pyramid < options.stack_pyramid_quality;
     if (!angle_falls && !pyramid_rises) break;
     previous = std::move(candidate);
@@ -719,6 +746,9 @@ InterfaceResult split_interface(const MixedMesh& mesh, const OuterLayer& layer,
                                       std::pair{"stack_pyramid_quality", options.stack_pyramid_quality}})
     if (!(value > 0.0) || !std::isfinite(value))
       throw Error(std::string("interface: ") + option + " must be > 0, got " + std::to_string(value));
+  if (options.stack_pyramid_quality > 1.0)
+    throw Error("interface: stack_pyramid_quality is a scaled Jacobian, at most 1, got " +
+                std::to_string(options.stack_pyramid_quality));
   const FaceConnectivity connectivity = validate(mesh, layer);
 
   InterfaceResult result;

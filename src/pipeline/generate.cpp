@@ -373,8 +373,9 @@ GenerateResult generate(const GenerateOptions& options, const Log& log) {
   }();
   const double seconds = watch.seconds();
   log.info("surface: " + seconds_text(seconds) + ", " + std::to_string(surface.points.size()) + " points");
+  const bool base = options.surface.wing && options.surface.wing->blunt_trailing_edge == TrailingEdge::base;
   for (const StructuredPatch& patch : surface.structured)
-    if (patch.name == "base" && patch.ni - 1 < options.surface.options.base_cells)
+    if (base && patch.name == "base" && patch.ni - 1 < options.surface.options.base_cells)
       log.info("surface: " + std::to_string(patch.ni - 1) + " faces across the base instead of base_cells " +
                std::to_string(options.surface.options.base_cells) +
                ", which would be more than base_face_aspect times shorter than the spanwise faces");

@@ -198,6 +198,19 @@ TEST(InterfaceSplit, CellsMuchThinnerThanLongAreStackedUntilTheirPyramidsStandUp
   EXPECT_GT(stacked.stacked_cells, for_tetrahedra.stacked_cells);
   EXPECT_EQ(stacked.mesh.points.size(), input.points.size() + 9) << "one split point per column";
   expect_sound_split(input, stacked);
+
+  // Faces 0.5 mm wide and 1 m long: the side quads' pyramids stay below the bound whatever the
+  // stack (about w / L = 5e-4): the tetrahedra still choose the stack.
+  const MixedMesh longer = hexahedron_block(
+      3, 3, 16, [](const Vector3& p) { return Vector3(0.0005 * p.x(), p.y(), 0.00005 * p.z()); });
+  const InterfaceResult sides = split_interface(longer, top_layer(3, 3, 16));
+  EXPECT_LT(worst_pyramid(sides.mesh), InterfaceOptions().stack_pyramid_quality);
+  EXPECT_LE(largest_tetrahedron_dihedral(sides.mesh), InterfaceOptions().stack_dihedral);
+  expect_sound_split(longer, sides);
+
+  InterfaceOptions above_one;
+  above_one.stack_pyramid_quality = 2.0;
+  EXPECT_THROW(split_interface(input, top_layer(3, 3, 12), above_one), Error);
 }
 
 TEST(InterfaceSplit, DiagonalRulesAreDeterministic) {
