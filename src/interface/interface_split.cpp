@@ -223,11 +223,12 @@ Vector3 split_point(CellType type, std::vector<Vector3>& points, const std::vect
   if (levels.size() > 1 && best.worst > 0.0 && best.worst_pyramid < options.stack_pyramid_quality) {
     const Vector3 low = centre;
     const Vector3 middle = stack_middle(type, points, levels);
-    for (int quarter = 1; quarter <= 4 && !shortfall(best, options).met(); ++quarter) {
+    Shortfall missing = shortfall(best, options);
+    for (int quarter = 1; quarter <= 4 && !missing.met(); ++quarter) {
       points.back() = low + 0.25 * quarter * (middle - low);
       const PieceQuality quality = piece_quality(type, points, levels, flipped, options);
-      if (misses_less(shortfall(quality, options), shortfall(best, options)))
-        best = quality, centre = points.back();
+      const Shortfall here = shortfall(quality, options);
+      if (misses_less(here, missing)) best = quality, missing = here, centre = points.back();
     }
   }
   double step = 0.0;
@@ -255,22 +256,16 @@ Vector3 split_point(CellType type, std::vector<Vector3>& points, const std::vect
 }
 
 // Where and how a cell is split: the split point, the outer quads cut along the other
-// diagonal than the rule's (bits as in for_each_piece), the worst piece (not positive:
-// no split makes every piece valid), the largest dihedral angle of the tetrahedra, and
-// the cells split about the point (the outer cell, then any under it in a stack).
+// diagonal than the rule's (bits as in for_each_piece), the quality of its pieces (worst
+// not positive: no split makes every piece valid), and the cells split about the point
+// (the outer cell, then any under it in a stack).
 struct SplitChoice {
   Vector3 point = Vector3::Zero();
   unsigned flipped = 0u;
-  double worst = 0.0;
-  double worst_pyramid = 0.0;
-  double largest_dihedral = 180.0;
+  PieceQuality quality{0.0, 0.0, 180.0};
   std::vector<std::size_t> cells;
   std::vector<unsigned> skipped_faces;  // per cell: the faces inside the stack
 };
-
-Shortfall shortfall(const SplitChoice& choice, const InterfaceOptions& options) {
-  return shortfall(PieceQuality{choice.worst, choice.worst_pyramid, choice.largest_dihedral}, options);
-}
 
 // The split of one cell or stack (`levels`, in mesh numbering). The search works on a
 // copy of the stack's nodes alone, numbered in the order of their numbers in the mesh
@@ -305,26 +300,16 @@ SplitChoice choose_split(CellType type, const std::vector<Vector3>& mesh_points,
         descriptor(type).faces[static_cast<std::size_t>(face)].node_count == 4)
       outer_quads.push_back(1u << face);
   SplitChoice choice;
-  PieceQuality quality;
-  choice.point = split_point(type, points, levels, choice.flipped, options, quality);
-  choice.worst = quality.worst;
-  choice.worst_pyramid = quality.worst_pyramid;
-  choice.largest_dihedral = quality.largest_dihedral;
+  choice.point = split_point(type, points, levels, choice.flipped, options, choice.quality);
   const unsigned combinations = 1u << std::min<std::size_t>(outer_quads.size(), 4);
-  for (unsigned combination = 1; combination < combinations && choice.worst <= 0.0; ++combination) {
+  for (unsigned combination = 1; combination < combinations && choice.quality.worst <= 0.0; ++combination) {
     unsigned candidate = 0u;
     for (std::size_t quad = 0; quad < outer_quads.size() && quad < 4; ++quad)
       if ((combination >> quad) & 1u) candidate |= outer_quads[quad];
     PieceQuality candidate_quality;
     const Vector3 candidate_point = split_point(type, points, levels, candidate, options, candidate_quality);
-    if (candidate_quality.worst > choice.worst)
-      choice = {candidate_point,
-                candidate,
-                candidate_quality.worst,
-                candidate_quality.worst_pyramid,
-                candidate_quality.largest_dihedral,
-                {},
-                {}};
+    if (candidate_quality.worst > choice.quality.worst)
+      choice = {candidate_point, candidate, candidate_quality, {}, {}};
   }
   return choice;
 }
@@ -384,8 +369,8 @@ SplitChoice choose_stack(const MixedMesh& mesh, CellType type, std::size_t cell,
   SplitChoice best = choose_split(type, mesh.points, levels, options);
   best.cells = {cell};
   best.skipped_faces = {0u};
-  Shortfall best_shortfall = shortfall(best, options);
-  if (best.worst <= 0.0 || best_shortfall.met()) return best;
+  Shortfall best_shortfall = shortfall(best.quality, options);
+  if (best.quality.worst <= 0.0 || best_shortfall.met()) return best;
   const CellDescriptor& shape = descriptor(type);
   int top = -1;
   double top_area = 0.0;
@@ -398,7 +383,7 @@ SplitChoice choose_stack(const MixedMesh& mesh, CellType type, std::size_t cell,
   }
   std::vector<std::size_t> cells{cell};
   int down = opposite_face(type, top);
-  SplitChoice previous = best;
+  PieceQuality previous = best.quality;
   while (static_cast<int>(cells.size()) < options.stack_cells && down >= 0 &&
          !((levels.back().outer_faces >> down) & 1u)) {
     const auto [below, up] = neighbours[cells.back() * static_cast<std::size_t>(shape.face_count) +
@@ -410,7 +395,7 @@ SplitChoice choose_stack(const MixedMesh& mesh, CellType type, std::size_t cell,
     levels.push_back({mesh.cell(type, static_cast<std::size_t>(below)), below_outer, 1u << up});
     cells.push_back(static_cast<std::size_t>(below));
     SplitChoice candidate = choose_split(type, mesh.points, levels, options);
-    const Shortfall candidate_shortfall = shortfall(candidate, options);
+    const Shortfall candidate_shortfall = shortfall(candidate.quality, options);
     if (misses_less(candidate_shortfall, best_shortfall)) {
       best = candidate;
       best_shortfall = candidate_shortfall;
@@ -422,15 +407,16 @@ SplitChoice choose_stack(const MixedMesh& mesh, CellType type, std::size_t cell,
     // pyramid on its inner quad stands up as the stack grows until it is about as high
     // as long; past both, a higher stack only loses.
     // (An inverted candidate neither ends the growth nor becomes the reference.)
-    if (candidate.worst <= 0.0) {
+    const PieceQuality& here = candidate.quality;
+    if (here.worst <= 0.0) {
       down = opposite_face(type, up);
       continue;
     }
-    const bool angle_falls = candidate.largest_dihedral < previous.largest_dihedral;
-    const bool pyramid_rises = candidate.worst_pyramid > 1.01 * previous.worst_pyramid &&
+    const bool angle_falls = here.largest_dihedral < previous.largest_dihedral;
+    const bool pyramid_rises = here.worst_pyramid > 1.01 * previous.worst_pyramid &&
                                previous.worst_pyramid < options.stack_pyramid_quality;
     if (!angle_falls && !pyramid_rises) break;
-    previous = std::move(candidate);
+    previous = here;
     down = opposite_face(type, up);
   }
   return best;
@@ -719,7 +705,7 @@ void replace_outer_cells(const MixedMesh& mesh, const OuterCells& outer, const C
       // The centre split unless no split point keeps every piece valid (thin cells with
       // a warped face): then, if allowed, the cell stays whole and its outer quads are
       // capped; if not, split_cell names the inverted piece.
-      if (choices[item].worst > 0.0 || !options.cap_unsplittable_cells) {
+      if (choices[item].quality.worst > 0.0 || !options.cap_unsplittable_cells) {
         split_cell(mesh, type, outer_faces, options, choices[item], result);
       } else {
         result.mesh.add_cell(type, mesh.cell(type, cell), block.regions[cell]);
@@ -742,12 +728,11 @@ void replace_outer_cells(const MixedMesh& mesh, const OuterCells& outer, const C
 InterfaceResult split_interface(const MixedMesh& mesh, const OuterLayer& layer,
                                 const InterfaceOptions& options) {
   for (const auto& [option, value] : {std::pair{"cap_height", options.cap_height},
-                                      std::pair{"marked_cap_height", options.marked_cap_height},
-                                      std::pair{"stack_pyramid_quality", options.stack_pyramid_quality}})
+                                      std::pair{"marked_cap_height", options.marked_cap_height}})
     if (!(value > 0.0) || !std::isfinite(value))
       throw Error(std::string("interface: ") + option + " must be > 0, got " + std::to_string(value));
-  if (options.stack_pyramid_quality > 1.0)
-    throw Error("interface: stack_pyramid_quality is a scaled Jacobian, at most 1, got " +
+  if (!(options.stack_pyramid_quality > 0.0 && options.stack_pyramid_quality <= 1.0))
+    throw Error("interface: stack_pyramid_quality is a scaled Jacobian in (0, 1], got " +
                 std::to_string(options.stack_pyramid_quality));
   const FaceConnectivity connectivity = validate(mesh, layer);
 
