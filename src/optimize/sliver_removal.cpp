@@ -76,8 +76,11 @@ class SliverRemoval {
     scanned_size_ = complex_.size();
     moved_points_.clear();
     std::size_t done = 0;
-    for (const auto& [q, t] : work) {
-      if (!complex_.alive(t) || quality(complex_, t) >= target) continue;
+    for (const auto& entry : work) {
+      const int t = entry.second;
+      if (!complex_.alive(t)) continue;
+      const double now = quality(complex_, t);
+      if (now >= target) continue;
       // Every removal, flip and split of t is weighed and the best taken: the first
       // that helps is often a poor one (an edge removal that joins a flat outer cell's
       // centre to a far-field point where the split of the cell's diagonal gives right
@@ -88,9 +91,12 @@ class SliverRemoval {
       split_an_edge(t);
       collapse_a_point(t);
       if (options_.smooth_points) move_a_point(t);
-      if (!best_ && options_.insert_points && !insertion_failed(t)) {
+      // A failed insertion is not tried again on a tetrahedron nearer the target: its
+      // neighbours seldom change enough to let it in. One flatter than halfway from the
+      // target to 180 degrees is tried in every pass: round it the neighbours' slivers
+      // are being mended, and a cavity refused in one pass is often clean in the next.
+      if (!best_ && options_.insert_points && (!insertion_failed(t) || now < 0.5 * target)) {
         insert_a_point(t);
-        // Kept from later passes: its neighbours seldom change enough to let it in.
         if (!best_) insertion_failed_[static_cast<std::size_t>(t)] = 1;
       }
       if (!best_) continue;
@@ -504,20 +510,39 @@ class SliverRemoval {
             trials_.push_back(base - height * normal);
           }
     }
-    for (const Vector3& trial : trials_) try_insertion(t, trial);
+    for (const Vector3& trial : trials_) try_insertion(t, trial, false);
+    if (!best_)
+      for (const Vector3& trial : trials_) try_insertion(t, trial, true);
   }
 
-  void try_insertion(int t, const Vector3& x) {
+  // The cavity of x: the tetrahedra whose circumsphere holds it (Bowyer-Watson), or,
+  // where no trial point's gave a change, the smallest one: the sliver and the
+  // tetrahedron holding x. Either is grown until it is star-shaped from x. Over a nearly
+  // flat hull the circumspheres of the flat tetrahedra round a sliver are huge and hold
+  // x, so the first runs to its limit over them and is seldom star-shaped (seed 58 wing
+  // 18: every trial's cavity round the sliver left at 178.8 degrees was at the limit);
+  // the smallest cones x over the sliver and a few neighbours. It comes second because
+  // a larger cavity, where one works, leaves room for the slivers next to it.
+  void try_insertion(int t, const Vector3& x, bool smallest) {
     const int start = complex_.locate(t, x);
     if (start < 0) return;
-    complex_.circumsphere_cavity(x, start, 64, cavity_);
+    if (smallest) {
+      cavity_.assign(1, start);
+    } else {
+      complex_.circumsphere_cavity(x, start, 64, cavity_);
+    }
     // A flat sliver's circumsphere is nearly a plane and may leave x out: a sliver whose
     // four points lie in one plane (the sides of a row of caps over a sheet's cells,
     // where TetGen joins two triangulations of that plane by flat tetrahedra) got no
     // cavity at all. It is taken in anyway; the star-shape growth and the volume check
     // below still judge the cavity.
     if (std::find(cavity_.begin(), cavity_.end(), t) == cavity_.end()) cavity_.push_back(t);
-    if (!complex_.make_star_shaped(x, 96, cavity_)) return;
+    if (complex_.make_star_shaped(x, 96, cavity_)) cone_cavity(x);
+  }
+
+  // The change that replaces the tetrahedra of cavity_ (star-shaped from x) by the cone
+  // from x over its boundary.
+  void cone_cavity(const Vector3& x) {
     Change change;
     change.operation = Operation::point_insertion;
     change.removed = cavity_;

@@ -291,6 +291,33 @@ TEST(SliverRemoval, SliversOnThreeNearlyCollinearHullNodesNeedAPointAtTheirOwnSc
   EXPECT_EQ(mesh.face_count(), sliver_patch("sliver_patch_leading_edge_station").face_count());
 }
 
+TEST(SliverRemoval, FlatTetrahedraOnANearlyFlatHullGetASmallCavity) {
+  // Just ahead of a trailing edge the hull is nearly flat and its quads are 7 mm by
+  // 11 cm: TetGen lays tetrahedra of four hull nodes on it, and the circumspheres of
+  // those flat tetrahedra are huge. A point over the sliver lies in dozens of them, so
+  // its Bowyer-Watson cavity runs to its limit and is not star-shaped; the cavity of
+  // the sliver and the tetrahedron holding the point, grown until star-shaped, is. With
+  // the Bowyer-Watson cavity alone the sliver at the centre stays at 178.8 degrees.
+  MixedMesh mesh = sliver_patch("sliver_patch_flat_hull_near_trailing_edge");
+  std::size_t near = 0;
+  const double before = largest_dihedral_within(mesh, 0.06, near);
+  ASSERT_GT(before, 178.0);
+  const std::size_t near_before = near;
+  const double volume = total_volume(mesh);
+  const SliverReport report = remove_slivers(mesh, SliverOptions{});
+  const double after = largest_dihedral_within(mesh, 0.06, near);
+  std::printf(
+      "within 6 cm of the centre: largest dihedral %.2f -> %.2f deg, above 170 deg %zu -> %zu, "
+      "%zu points inserted\n",
+      before, after, near_before, near, report.point_insertions);
+  EXPECT_GE(report.point_insertions, 1u);
+  EXPECT_LT(after, 175.0);
+  EXPECT_EQ(near, 0u);
+  EXPECT_NEAR(total_volume(mesh) / volume, 1.0, 1e-9);
+  EXPECT_TRUE(match_faces(mesh).conforming());
+  EXPECT_EQ(mesh.face_count(), sliver_patch("sliver_patch_flat_hull_near_trailing_edge").face_count());
+}
+
 TEST(SliverRemoval, BadOptionsAreRejected) {
   MixedMesh mesh = cube_block(1);
   SliverOptions options;

@@ -23,8 +23,11 @@
 //     positions; on a flat boundary (all its boundary faces triangles in one plane) it
 //     moves within that plane;
 //   - point insertion, for a sliver none of the above mends: a new point at its
-//     circumcentre or over one of its faces, and the cavity of the tetrahedra whose
-//     circumsphere holds it (grown until it is star-shaped from the point) coned from it.
+//     circumcentre or over one of its faces, coned over a cavity grown until it is
+//     star-shaped from the point: the tetrahedra whose circumsphere holds it, or, where
+//     no trial point's such cavity helps, only the sliver and the tetrahedron holding
+//     the point. A failed insertion is tried again in later passes on a tetrahedron
+//     flatter than halfway from the target to 180 degrees.
 // Faces shared with a pyramid, prism or hexahedron and boundary faces are never
 // removed, no point of them moves off its plane, so the mesh stays conforming with every face
 // and marker it had.
