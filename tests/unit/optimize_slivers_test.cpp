@@ -231,6 +231,34 @@ MixedMesh sliver_patch(const std::string& name = "sliver_patch_behind_trailing_e
   return mesh;
 }
 
+// The default pass on the patch tests/unit/data/NAME.txt, judged on the tetrahedra whose
+// centroid lies within `radius` of the patch's centre (its cut faces are walls, so the
+// tetrahedra next to them may stay flat). The volume, the conformity and the boundary
+// faces must be kept.
+struct PatchResult {
+  double before = 0.0, after = 0.0;  // the largest dihedral angle, degrees
+  std::size_t above_170_before = 0, above_170_after = 0;
+  SliverReport report;
+};
+
+PatchResult remove_slivers_round_centre(const std::string& name, double radius) {
+  MixedMesh mesh = sliver_patch(name);
+  PatchResult result;
+  result.before = largest_dihedral_within(mesh, radius, result.above_170_before);
+  const double volume = total_volume(mesh);
+  result.report = remove_slivers(mesh, SliverOptions{});
+  result.after = largest_dihedral_within(mesh, radius, result.above_170_after);
+  std::printf(
+      "within %.2f m of the centre: largest dihedral %.2f -> %.2f deg, above 170 deg %zu -> %zu, "
+      "%zu points inserted\n",
+      radius, result.before, result.after, result.above_170_before, result.above_170_after,
+      result.report.point_insertions);
+  EXPECT_NEAR(total_volume(mesh) / volume, 1.0, 1e-9);
+  EXPECT_TRUE(match_faces(mesh).conforming());
+  EXPECT_EQ(mesh.face_count(), sliver_patch(name).face_count());
+  return result;
+}
+
 TEST(SliverRemoval, SliversOnTheHullBehindATrailingEdgeNeedNewPoints) {
   // A wing's far field behind its trailing edge, where the hull's quads are long and
   // narrow and nearly flat: tetrahedra lie on two hull triangles of a shallow fold, or
@@ -269,26 +297,13 @@ TEST(SliverRemoval, SliversOnThreeNearlyCollinearHullNodesNeedAPointAtTheirOwnSc
   // on both sides of it. A point a chord-wise cell above them mends them; one a tenth
   // of the sliver's longest edge up (20 cm, five cells) does not. The patch's cut faces
   // are walls, so only the slivers round its centre (the middle node) are judged.
-  MixedMesh mesh = sliver_patch("sliver_patch_leading_edge_station");
-  std::size_t near = 0;
-  const double before = largest_dihedral_within(mesh, 1.0, near);
-  ASSERT_GT(before, 179.0);
-  ASSERT_GT(near, 10u);
-  const std::size_t near_before = near;
-  const double volume = total_volume(mesh);
-  const SliverReport report = remove_slivers(mesh, SliverOptions{});
-  const double after = largest_dihedral_within(mesh, 1.0, near);
-  std::printf(
-      "within 1 m of the middle node: largest dihedral %.2f -> %.2f deg, above 170 deg %zu -> %zu, "
-      "%zu points inserted\n",
-      before, after, near_before, near, report.point_insertions);
-  EXPECT_GE(report.point_insertions, 1u);
+  const PatchResult result = remove_slivers_round_centre("sliver_patch_leading_edge_station", 1.0);
+  ASSERT_GT(result.before, 179.0);
+  ASSERT_GT(result.above_170_before, 10u);
+  EXPECT_GE(result.report.point_insertions, 1u);
   // Long-scale trial points only: 178.8 degrees and 22 above 170.
-  EXPECT_LT(after, 175.0);
-  EXPECT_LE(near, 2u);
-  EXPECT_NEAR(total_volume(mesh) / volume, 1.0, 1e-9);
-  EXPECT_TRUE(match_faces(mesh).conforming());
-  EXPECT_EQ(mesh.face_count(), sliver_patch("sliver_patch_leading_edge_station").face_count());
+  EXPECT_LT(result.after, 175.0);
+  EXPECT_LE(result.above_170_after, 2u);
 }
 
 TEST(SliverRemoval, FlatTetrahedraOnANearlyFlatHullGetASmallCavity) {
@@ -298,24 +313,11 @@ TEST(SliverRemoval, FlatTetrahedraOnANearlyFlatHullGetASmallCavity) {
   // its Bowyer-Watson cavity runs to its limit and is not star-shaped; the cavity of
   // the sliver and the tetrahedron holding the point, grown until star-shaped, is. With
   // the Bowyer-Watson cavity alone the sliver at the centre stays at 178.8 degrees.
-  MixedMesh mesh = sliver_patch("sliver_patch_flat_hull_near_trailing_edge");
-  std::size_t near = 0;
-  const double before = largest_dihedral_within(mesh, 0.06, near);
-  ASSERT_GT(before, 178.0);
-  const std::size_t near_before = near;
-  const double volume = total_volume(mesh);
-  const SliverReport report = remove_slivers(mesh, SliverOptions{});
-  const double after = largest_dihedral_within(mesh, 0.06, near);
-  std::printf(
-      "within 6 cm of the centre: largest dihedral %.2f -> %.2f deg, above 170 deg %zu -> %zu, "
-      "%zu points inserted\n",
-      before, after, near_before, near, report.point_insertions);
-  EXPECT_GE(report.point_insertions, 1u);
-  EXPECT_LT(after, 175.0);
-  EXPECT_EQ(near, 0u);
-  EXPECT_NEAR(total_volume(mesh) / volume, 1.0, 1e-9);
-  EXPECT_TRUE(match_faces(mesh).conforming());
-  EXPECT_EQ(mesh.face_count(), sliver_patch("sliver_patch_flat_hull_near_trailing_edge").face_count());
+  const PatchResult result = remove_slivers_round_centre("sliver_patch_flat_hull_near_trailing_edge", 0.06);
+  ASSERT_GT(result.before, 178.0);
+  EXPECT_GE(result.report.point_insertions, 1u);
+  EXPECT_LT(result.after, 175.0);
+  EXPECT_EQ(result.above_170_after, 0u);
 }
 
 TEST(SliverRemoval, BadOptionsAreRejected) {
