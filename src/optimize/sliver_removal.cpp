@@ -510,27 +510,30 @@ class SliverRemoval {
             trials_.push_back(base - height * normal);
           }
     }
-    for (const Vector3& trial : trials_) try_insertion(t, trial, false);
-    if (!best_)
-      for (const Vector3& trial : trials_) try_insertion(t, trial, true);
+    // Each trial point is located once: the smallest cavities start where it lies too.
+    starts_.clear();
+    for (const Vector3& trial : trials_) starts_.push_back(complex_.locate(t, trial));
+    for (const Cavity cavity : {Cavity::circumsphere, Cavity::smallest}) {
+      if (best_) break;
+      for (std::size_t trial = 0; trial < trials_.size(); ++trial)
+        if (starts_[trial] >= 0) try_insertion(t, trials_[trial], starts_[trial], cavity);
+    }
   }
 
-  // The cavity of x: the tetrahedra whose circumsphere holds it (Bowyer-Watson), or,
-  // where no trial point's gave a change, the smallest one: the sliver and the
-  // tetrahedron holding x. Either is grown until it is star-shaped from x. Over a nearly
+  // The cavity of x (in tetrahedron `start`): the tetrahedra whose circumsphere holds it
+  // (Bowyer-Watson), or, where no trial point's gave a change, the smallest one: the
+  // sliver and the tetrahedron holding x. Either is grown until it is star-shaped from x. Over a nearly
   // flat hull the circumspheres of the flat tetrahedra round a sliver are huge and hold
   // x, so the first runs to its limit over them and is seldom star-shaped (seed 58 wing
   // 18: every trial's cavity round the sliver left at 178.8 degrees was at the limit);
   // the smallest cones x over the sliver and a few neighbours. It comes second because
   // a larger cavity, where one works, leaves room for the slivers next to it.
-  void try_insertion(int t, const Vector3& x, bool smallest) {
-    const int start = complex_.locate(t, x);
-    if (start < 0) return;
-    if (smallest) {
+  enum class Cavity { circumsphere, smallest };
+  void try_insertion(int t, const Vector3& x, int start, Cavity kind) {
+    if (kind == Cavity::smallest)
       cavity_.assign(1, start);
-    } else {
+    else
       complex_.circumsphere_cavity(x, start, 64, cavity_);
-    }
     // A flat sliver's circumsphere is nearly a plane and may leave x out: a sliver whose
     // four points lie in one plane (the sides of a row of caps over a sheet's cells,
     // where TetGen joins two triangulations of that plane by flat tetrahedra) got no
@@ -590,6 +593,7 @@ class SliverRemoval {
   std::vector<int> ring_;
   std::optional<Change> best_;
   std::vector<Vector3> trials_;
+  std::vector<int> starts_;  // the tetrahedron holding each trial point (-1: none)
   std::vector<int> cavity_;
   std::vector<char> insertion_failed_;
 

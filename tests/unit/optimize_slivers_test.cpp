@@ -246,6 +246,7 @@ PatchResult remove_slivers_round_centre(const std::string& name, double radius) 
   PatchResult result;
   result.before = largest_dihedral_within(mesh, radius, result.above_170_before);
   const double volume = total_volume(mesh);
+  const std::size_t faces = mesh.face_count();
   result.report = remove_slivers(mesh, SliverOptions{});
   result.after = largest_dihedral_within(mesh, radius, result.above_170_after);
   std::printf(
@@ -255,7 +256,7 @@ PatchResult remove_slivers_round_centre(const std::string& name, double radius) 
       result.report.point_insertions);
   EXPECT_NEAR(total_volume(mesh) / volume, 1.0, 1e-9);
   EXPECT_TRUE(match_faces(mesh).conforming());
-  EXPECT_EQ(mesh.face_count(), sliver_patch(name).face_count());
+  EXPECT_EQ(mesh.face_count(), faces);
   return result;
 }
 
