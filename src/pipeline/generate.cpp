@@ -1,6 +1,7 @@
 #include "mixmesh/pipeline/generate.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <limits>
@@ -125,8 +126,21 @@ void lower_layers(const SurfaceMesh& surface, const GenerateOptions& options, co
   // to the nearest surface node; thin layers alone reached no face on a small wing),
   // growing with each retry; depth: half the layers, then half as many again each
   // time (behind a blunt base the crossings lie low in the layers, and four layers
-  // less per retry never reached them).
+  // less per retry never reached them), but no lower than the layer whose stack is
+  // half as thick as the crossing is high (a quarter on the second retry, and so on):
+  // a crossing high in the layers (a tapered tip's trailing edge) once stopped them
+  // where the geometric stack is a twentieth of its thickness, and the split of such a
+  // thin stack under the tip's triangles left flat tetrahedra.
   MarchOptions& march_options = attempts.march_options;
+  const std::vector<double> steps = layer_steps(march_options.spacing);
+  const auto layer_below = [&](double height) {
+    int layer = 0;
+    for (double thickness = 0.0; layer < static_cast<int>(steps.size()); ++layer) {
+      thickness += steps[layer];
+      if (thickness > height) break;
+    }
+    return layer;
+  };
   std::vector<ForcedStop> stops;
   for (const Vector3& crossing : crossings) {
     const bool covered = std::any_of(stops.begin(), stops.end(), [&](const ForcedStop& other) {
@@ -139,7 +153,9 @@ void lower_layers(const SurfaceMesh& surface, const GenerateOptions& options, co
     ForcedStop stop;
     stop.centre = crossing;
     stop.radius = (attempt + 1) * (3.0 * attempts.layers.report.total_thickness + 2.0 * nearest_node);
-    stop.layer = std::max(1, march_options.spacing.layer_count >> (attempt + 1));
+    const double height_share = std::ldexp(1.0, -(attempt + 1));
+    stop.layer = std::max(
+        {1, march_options.spacing.layer_count >> (attempt + 1), layer_below(height_share * nearest_node)});
     stops.push_back(stop);
   }
   march_options.forced_stops.insert(march_options.forced_stops.end(), stops.begin(), stops.end());
