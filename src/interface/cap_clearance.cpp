@@ -4,11 +4,11 @@
 #include <cmath>
 #include <functional>
 #include <map>
+#include <optional>
 #include <queue>
 #include <utility>
 #include <vector>
 
-#include <CGAL/AABB_segment_primitive.h>
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
 #include <CGAL/AABB_triangle_primitive.h>
@@ -27,9 +27,6 @@ using Triangle3 = Kernel::Triangle_3;
 using Point3 = Kernel::Point_3;
 using Primitive = CGAL::AABB_triangle_primitive<Kernel, std::vector<Triangle3>::const_iterator>;
 using HullTree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, Primitive>>;
-using Segment3 = Kernel::Segment_3;
-using SegmentPrimitive = CGAL::AABB_segment_primitive<Kernel, std::vector<Segment3>::const_iterator>;
-using SegmentTree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, SegmentPrimitive>>;
 
 Point3 cgal_point(const Vector3& p) {
   return {p.x(), p.y(), p.z()};
@@ -111,6 +108,64 @@ std::vector<char> level_neighbouring_caps(MixedMesh& mesh, std::vector<TallCap>&
   return lowered;
 }
 
+// The edge two caps' quads share, as a unit vector, or zero when they share none.
+Vector3 shared_edge(const MixedMesh& mesh, const TallCap& one, const TallCap& other) {
+  Index ends[2] = {-1, -1};
+  int found = 0;
+  for (int k = 0; k < 4 && found < 2; ++k)
+    for (int j = 0; j < 4; ++j)
+      if (one.pyramid[static_cast<std::size_t>(k)] == other.pyramid[static_cast<std::size_t>(j)])
+        ends[found++] = one.pyramid[static_cast<std::size_t>(k)];
+  if (found < 2) return Vector3::Zero();
+  return (mesh.points[static_cast<std::size_t>(ends[1])] - mesh.points[static_cast<std::size_t>(ends[0])])
+      .normalized();
+}
+
+// Neighbouring caps keep their apexes apart across their shared edge: at least half as
+// far as their quads' middles are. The far field fills the valley between them with
+// the tetrahedron of that edge and the two apexes, which is flat once the apexes' edge
+// runs along the shared one. Over a concave fold the caps of two narrow quads lean
+// together, and tens of quad widths high their apexes meet: on random wings of seed 59
+// and seed 3 (the first wake rows behind a swept trailing edge, quads a few centimetres
+// by 1-2 m, caps 0.3 m high) the apexes ended 2-6 mm apart, offset along the edge, and
+// that tetrahedron had 175.8-179.9 deg; the alignment along the mean normal narrows
+// such a fold but does not close it. Both caps come down by the same factor until the
+// bound holds (not below their lowest). Lowering brings an apex towards its quad, so
+// nothing new crosses. Returns the caps lowered.
+std::vector<char> separate_neighbouring_caps(MixedMesh& mesh, std::vector<TallCap>& caps,
+                                             const CapPairs& pairs) {
+  std::vector<char> lowered(caps.size(), 0);
+  for (int pass = 0; pass < 4; ++pass) {
+    bool moved = false;
+    for (std::size_t first = 0; first < caps.size(); ++first)
+      for (std::size_t second : pairs[first]) {
+        if (second < first) continue;
+        TallCap& one = caps[first];
+        TallCap& other = caps[second];
+        const Vector3 edge = shared_edge(mesh, one, other);
+        Vector3 across = other.middle - one.middle;
+        across -= across.dot(edge) * edge;
+        const double distance = across.norm();
+        if (!(distance > 0.0)) continue;
+        across /= distance;
+        // The apexes' separation across the edge with both heights scaled by s:
+        // distance - s closing.
+        const double closing = -(other.height * other.direction - one.height * one.direction).dot(across);
+        if (!(closing > 0.5 * distance)) continue;
+        const double scale = 0.5 * distance / closing;
+        for (TallCap* cap : {&one, &other}) {
+          const double height = std::max(cap->lowest, scale * cap->height);
+          if (cap->height > height * (1.0 + 1e-9) && lower_to(mesh, *cap, height)) {
+            lowered[static_cast<std::size_t>(cap - caps.data())] = 1;
+            moved = true;
+          }
+        }
+      }
+    if (!moved) break;
+  }
+  return lowered;
+}
+
 // Caps on nearly coplanar neighbouring quads stand along their mean normal. Over a fold
 // of a few degrees between narrow quads their own normals turn towards each other, and
 // apexes tens of quad widths high meet: on random wing 2 of seed 53 two caps 31 mm high
@@ -133,6 +188,7 @@ void align_neighbouring_caps(MixedMesh& mesh, std::vector<TallCap>& caps, const 
     }
     for (std::size_t cap = 0; cap < caps.size(); ++cap) {
       TallCap& tall = caps[cap];
+      if (tall.on_plane) continue;  // its apex stays in the plane
       Vector3& apex = mesh.points[static_cast<std::size_t>(tall.apex)];
       const Vector3 before = apex;
       apex = tall.middle + tall.height * direction[cap];
@@ -147,27 +203,27 @@ void align_neighbouring_caps(MixedMesh& mesh, std::vector<TallCap>& caps, const 
 }  // namespace
 
 std::size_t lower_crossing_caps(MixedMesh& mesh, const std::vector<std::array<Index, 3>>& hull,
-                                std::vector<TallCap>& caps) {
+                                std::vector<TallCap>& caps, const std::optional<Plane>& plane) {
   std::vector<char> lowered(caps.size(), 0);
   const CapPairs pairs = cap_pairs(caps);
   align_neighbouring_caps(mesh, caps, pairs);
-  // Near the footprint (the hull's edges in the symmetry plane, used by one hull
-  // triangle) a tall cap leans across the plane on a sheet with dihedral, and the slot
-  // between a tall cap and the plane fills with thin tetrahedra that fold under a pitch
-  // of the mesh. There a cap stands no higher than its distance from the footprint (and
-  // not below its lowest height): the caps rise from the plane at 45 degrees.
-  std::vector<Segment3> footprint;
-  for (const auto& edge : triangle_free_edges(hull))
-    footprint.emplace_back(cgal_point(mesh.points[static_cast<std::size_t>(edge[0])]),
-                           cgal_point(mesh.points[static_cast<std::size_t>(edge[1])]));
-  if (!footprint.empty()) {
-    SegmentTree segments(footprint.begin(), footprint.end());
-    segments.accelerate_distance_queries();
-    for (std::size_t cap = 0; cap < caps.size(); ++cap) {
-      const double limit =
-          std::max(caps[cap].lowest,
-                   std::sqrt(CGAL::to_double(segments.squared_distance(cgal_point(caps[cap].middle)))));
-      if (caps[cap].height > limit && lower_to(mesh, caps[cap], limit)) lowered[cap] = 1;
+  // On a sheet with dihedral the caps on one side lean towards the symmetry plane, and
+  // next to it a tall cap leaned across it. So a cap's direction loses its component
+  // towards the plane: the caps stand parallel to the plane and to the leaning caps on
+  // it (lowering them instead left the narrow rows by the plane with caps so low over
+  // their long quads that the valleys between them were flat, 176.9 deg on random wing
+  // 64 of seed 59, with 7.8 deg of dihedral). A cap whose pyramid would then be inverted
+  // keeps its direction.
+  if (plane) {
+    const Vector3 normal = plane->normal.normalized();
+    for (TallCap& tall : caps) {
+      if (tall.on_plane) continue;
+      const double side = (tall.middle - plane->point).dot(normal) < 0.0 ? -1.0 : 1.0;
+      const double towards = -side * tall.direction.dot(normal);
+      if (!(towards > 0.0)) continue;
+      const Vector3 direction = tall.direction;
+      tall.direction = (direction - direction.dot(normal) * normal).normalized();
+      if (!lower_to(mesh, tall, tall.height)) tall.direction = direction;
     }
   }
   // Each round halves the crossing caps once; a cap comes down from its tall height to
@@ -187,13 +243,14 @@ std::size_t lower_crossing_caps(MixedMesh& mesh, const std::vector<std::array<In
       const bool aligned = caps[cap].direction != caps[cap].normal;
       if (!(caps[cap].height > caps[cap].lowest) && !aligned) continue;
       bool crosses = false;
-      for (std::size_t side = 0; side < 4 && !crosses; ++side) {
+      for (std::size_t side = 0; side < caps[cap].hull_triangles && !crosses; ++side) {
         const std::size_t own = caps[cap].first_hull_triangle + side;
         hits.clear();
         tree.all_intersected_primitives(shrunk(mesh, hull[own]), std::back_inserter(hits));
         for (const auto& hit : hits) {
           const auto index = static_cast<std::size_t>(hit - triangles.begin());
-          if (index < caps[cap].first_hull_triangle || index >= caps[cap].first_hull_triangle + 4)
+          if (index < caps[cap].first_hull_triangle ||
+              index >= caps[cap].first_hull_triangle + caps[cap].hull_triangles)
             crosses = true;
         }
       }
@@ -222,8 +279,10 @@ std::size_t lower_crossing_caps(MixedMesh& mesh, const std::vector<std::array<In
     }
     if (moved == 0) break;
   }
+  const std::vector<char> separated = separate_neighbouring_caps(mesh, caps, pairs);
   const std::vector<char> levelled = level_neighbouring_caps(mesh, caps, pairs);
-  for (std::size_t cap = 0; cap < caps.size(); ++cap) lowered[cap] = lowered[cap] || levelled[cap];
+  for (std::size_t cap = 0; cap < caps.size(); ++cap)
+    lowered[cap] = lowered[cap] || separated[cap] || levelled[cap];
   return static_cast<std::size_t>(std::count(lowered.begin(), lowered.end(), 1));
 }
 

@@ -3,6 +3,7 @@
 
 #include <array>
 #include <cstddef>
+#include <optional>
 #include <vector>
 
 #include "mixmesh/mesh/mixed_mesh.hpp"
@@ -18,15 +19,24 @@ struct TallCap {
   double height = 0.0;                  // the apex's height over the middle now
   double lowest = 0.0;                  // the height it may come down to
   std::array<Index, 5> pyramid{};       // quad corners, apex
-  std::size_t first_hull_triangle = 0;  // its four hull triangles follow in order
+  std::size_t first_hull_triangle = 0;  // its hull triangles follow in order
+  std::size_t hull_triangles = 4;       // 3 when it leans on the symmetry plane
+  bool on_plane = false;                // its apex in the symmetry plane (kept there)
 };
 
-// Aligns the caps with their neighbours' normals, halves the height of every cap with a
+// The symmetry plane: a point in it and its normal (any length, either side).
+struct Plane {
+  Vector3 point = Vector3::Zero();
+  Vector3 normal = Vector3::Zero();
+};
+
+// Aligns the caps with their neighbours' normals (not those leaning on the plane), turns
+// those leaning towards the plane parallel to it, halves the height of every cap with a
 // face crossing another hull triangle (not below `lowest`, and not to an inverted
 // pyramid; a cap at its lowest that still crosses goes back to its own normal) until no
 // cap crosses or none can come down further, and levels neighbouring caps. Returns the
 // number of caps lowered (clear of the hull or level with a neighbour).
 std::size_t lower_crossing_caps(MixedMesh& mesh, const std::vector<std::array<Index, 3>>& hull,
-                                std::vector<TallCap>& caps);
+                                std::vector<TallCap>& caps, const std::optional<Plane>& plane);
 
 }  // namespace mixmesh::interface_detail

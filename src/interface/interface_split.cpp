@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <optional>
 #include <set>
 
 #include <tbb/blocked_range.h>
@@ -459,14 +460,95 @@ void split_cell(const MixedMesh& mesh, CellType type, const std::vector<unsigned
   }
 }
 
+// Which outer cells are capped rather than split (InterfaceOptions::capped_marker).
+struct CapRules {
+  std::set<FaceKey> capped_quads;  // the boundary quads tagged capped_marker
+  // Edges used by one outer face: the footprint on the symmetry plane. A marked
+  // hexahedron with its outer quad there gets a cap leaning on the plane (its apex in
+  // the plane over the footprint edge, cap_cell): a cap's apex over the quad's middle
+  // stood half the quad's width from the plane, and the tetrahedra between it and the
+  // plane's triangles were flat (175-176 deg along the ONERA M6 wake's root).
+  std::map<std::pair<Index, Index>, int> outer_edge_uses;
+  // Per footprint edge, the marker and the outward area vector of the boundary quad of
+  // the layers that holds it in the plane (the symmetry plane's quad of the outer cell).
+  std::map<std::pair<Index, Index>, std::pair<int, Vector3>> plane_quads;
+  // Nodes of the other outer faces: a hexahedron touching them is split as usual, so
+  // caps stay away from where the marked hull meets the rest (a wake's trailing edge,
+  // the tip trailing edge), whose faces meet at angles a cap could cross (a twisted tip).
+  // Prisms are capped regardless: the one marked prism of the march, the first cell
+  // between the two sheet lines at a junction, has no split point off its edges.
+  std::vector<char> plain_hull_node;
+
+  bool on_footprint(const Index* corners, int count) const {
+    for (int k = 0; k < count; ++k) {
+      const auto uses = outer_edge_uses.find(std::minmax(corners[k], corners[(k + 1) % count]));
+      if (uses != outer_edge_uses.end() && uses->second == 1) return true;
+    }
+    return false;
+  }
+  // The one edge k (corners k, k + 1) of an outer quad on the footprint with a plane
+  // quad under it, or -1 when there is none or more than one.
+  int plane_edge(const Index* corners) const {
+    int found = -1;
+    for (int k = 0; k < 4; ++k) {
+      const auto edge = std::minmax(corners[k], corners[(k + 1) % 4]);
+      const auto uses = outer_edge_uses.find(edge);
+      if (uses == outer_edge_uses.end() || uses->second != 1) continue;
+      if (found >= 0 || !plane_quads.count(edge)) return -1;
+      found = k;
+    }
+    return found;
+  }
+};
+
+CapRules cap_rules(const MixedMesh& mesh, const OuterLayer& layer, const InterfaceOptions& options) {
+  CapRules rules;
+  const int capped_marker = options.capped_marker.empty() ? -1 : mesh.find_marker(options.capped_marker);
+  if (capped_marker >= 0)
+    for (std::size_t face = 0; face < mesh.face_count(FaceType::quad); ++face)
+      if (mesh.faces(FaceType::quad).markers[face] == capped_marker)
+        rules.capped_quads.insert(sorted_face_key(mesh.face(FaceType::quad, face), 4));
+  rules.plain_hull_node.assign(mesh.points.size(), 0);
+  std::set<FaceKey> outer_faces;
+  for (const auto& [type, cells] :
+       {std::pair{CellType::hexahedron, &layer.hexahedra}, std::pair{CellType::prism, &layer.prisms}})
+    for (const OuterCell& outer : *cells) {
+      Index corners[4] = {-1, -1, -1, -1};
+      const int count = face_nodes(mesh, {type, static_cast<Index>(outer.cell), outer.outer_face}, corners);
+      outer_faces.insert(sorted_face_key(corners, count));
+      for (int k = 0; k < count; ++k)
+        ++rules.outer_edge_uses[std::minmax(corners[k], corners[(k + 1) % count])];
+      if (count == 4 && rules.capped_quads.count(sorted_face_key(corners, 4))) continue;
+      for (int corner = 0; corner < count; ++corner)
+        rules.plain_hull_node[static_cast<std::size_t>(corners[corner])] = 1;
+    }
+  // The plane quads: the symmetry plane's quads with a footprint edge.
+  const int symmetry_marker = options.symmetry_marker.empty() ? -1 : mesh.find_marker(options.symmetry_marker);
+  for (std::size_t face = 0; face < mesh.face_count(FaceType::quad) && symmetry_marker >= 0; ++face) {
+    const Index* nodes = mesh.face(FaceType::quad, face);
+    const int marker = mesh.faces(FaceType::quad).markers[face];
+    if (marker != symmetry_marker || outer_faces.count(sorted_face_key(nodes, 4))) continue;
+    for (int k = 0; k < 4; ++k) {
+      const auto edge = std::minmax(nodes[k], nodes[(k + 1) % 4]);
+      const auto uses = rules.outer_edge_uses.find(edge);
+      if (uses != rules.outer_edge_uses.end() && uses->second == 1)
+        rules.plane_quads.emplace(edge, std::pair{marker, face_area_vector(mesh.points, nodes, 4)});
+    }
+  }
+  return rules;
+}
+
 constexpr double minimum_cap_reach = 0.4;
 
 // Keeps the cell and caps every outer quad with a pyramid outside it, apex above the
 // quad's centre at cap_height × its shortest edge (for a marked cell at least
 // minimum_cap_reach × its longest); the caps' sides join the hull.
+// A marked quad with an edge on the footprint (rules given) leans its cap on the plane:
+// the apex stands in the plane over that edge's middle, and the cap's face over the edge
+// lies in the plane and takes the plane quad's marker instead of joining the hull.
 void cap_cell(CellType type, std::size_t cell, const Index* nodes, unsigned outer_faces, int region,
               const InterfaceOptions& options, double cap_height, bool split_tried, InterfaceResult& result,
-              std::vector<interface_detail::TallCap>* tall_caps = nullptr) {
+              std::vector<interface_detail::TallCap>* tall_caps = nullptr, const CapRules* rules = nullptr) {
   MixedMesh& out = result.mesh;
   const CellDescriptor& shape = descriptor(type);
   for (int face = 0; face < shape.face_count; ++face) {
@@ -503,7 +585,30 @@ void cap_cell(CellType type, std::size_t cell, const Index* nodes, unsigned oute
     const double reach = split_tried ? shortest : std::max(shortest, minimum_cap_reach * longest);
     const double lowest_reach =
         split_tried ? shortest : std::max(shortest, std::min(minimum_cap_reach * longest, 2.0 * shortest));
-    const Vector3 normal = face_area_vector(out.points, corners, 4).normalized();
+    Vector3 normal = face_area_vector(out.points, corners, 4).normalized();
+    const Vector3 quad_middle = middle;
+    const int plane_edge = rules ? rules->plane_edge(corners) : -1;
+    const std::pair<int, Vector3>* plane_quad =
+        plane_edge >= 0 ? &rules->plane_quads.at(std::minmax(corners[plane_edge], corners[(plane_edge + 1) % 4]))
+                        : nullptr;
+    // A cap over the middle of a quad next to the plane leaves a valley or a slot
+    // against the plane that only low caps keep from folding, and low caps over a
+    // wake's long end quads are flat (175-176 deg on random wings with the wake's
+    // end rows metres long and centimetres wide). Leaning on the plane, the cap fills
+    // that space and stands as tall as its neighbours.
+    const auto lean_on_plane = [&] {
+      const Vector3& first = out.points[static_cast<std::size_t>(corners[plane_edge])];
+      const Vector3& second = out.points[static_cast<std::size_t>(corners[(plane_edge + 1) % 4])];
+      const Vector3 plane_normal = plane_quad->second.normalized();
+      const Vector3 along = (second - first).normalized();
+      Vector3 up = normal - normal.dot(plane_normal) * plane_normal;
+      up -= up.dot(along) * along;
+      if (!(up.norm() > 0.5)) return false;  // the quad leans over the plane itself
+      middle = 0.5 * (first + second);
+      normal = up.normalized();
+      return true;
+    };
+    const bool leaning = plane_edge >= 0 && !split_tried && lean_on_plane();
     const Index apex = static_cast<Index>(out.points.size());
     out.points.push_back(middle + cap_height * reach * normal);
     // Seen from the apex (outside) the outward winding is counter-clockwise already.
@@ -523,6 +628,20 @@ void cap_cell(CellType type, std::size_t cell, const Index* nodes, unsigned oute
       height *= 2.0;
       out.points.back() = middle + height * normal;
     }
+    if (leaning && !cell_shape(CellType::pyramid, out.points, pyramid).valid()) {
+      // No leaning cap is valid (a strongly twisted quad): the cap over the middle.
+      middle = quad_middle;
+      normal = face_area_vector(out.points, corners, 4).normalized();
+      out.points.pop_back();
+      out.points.push_back(middle + cap_height * reach * normal);
+      for (double height = cap_height * reach;
+           height > 0.0 && !cell_shape(CellType::pyramid, out.points, pyramid).valid() &&
+           2.0 * height <= options.cap_height_limit * diagonal;) {
+        height *= 2.0;
+        out.points.back() = middle + height * normal;
+      }
+    }
+    const bool leans = leaning && middle != quad_middle;
     if (!cell_shape(CellType::pyramid, out.points, pyramid).valid())
       throw UnsplittableCellError(
           "interface: " + std::string(name(type)) + " " + std::to_string(cell) +
@@ -540,9 +659,16 @@ void cap_cell(CellType type, std::size_t cell, const Index* nodes, unsigned oute
                             height,
                             cap_height * lowest_reach,
                             {corners[0], corners[1], corners[2], corners[3], apex},
-                            result.hull.size()});
-    for (int corner = 0; corner < 4; ++corner)
-      result.hull.push_back({corners[corner], corners[(corner + 1) % 4], apex});
+                            result.hull.size(),
+                            leans ? 3u : 4u,
+                            leans});
+    for (int corner = 0; corner < 4; ++corner) {
+      const Index triangle[3] = {corners[corner], corners[(corner + 1) % 4], apex};
+      if (leans && corner == plane_edge)
+        out.add_face(FaceType::triangle, triangle, plane_quad->first);
+      else
+        result.hull.push_back({triangle[0], triangle[1], triangle[2]});
+    }
   }
   ++result.capped_cells;
 }
@@ -564,56 +690,11 @@ OuterCells outer_cells(const MixedMesh& mesh, CellType type, const std::vector<O
   return outer;
 }
 
-// Which outer cells are capped rather than split (InterfaceOptions::capped_marker).
-struct CapRules {
-  std::set<FaceKey> capped_quads;  // the boundary quads tagged capped_marker
-  // Edges used by one outer face: the footprint on the symmetry plane. A marked
-  // hexahedron with its outer quad there is split, not capped: the cap's apex would
-  // stand half the quad's width from the plane, and the tetrahedra between it and the
-  // plane's triangles were flat (175-176 deg along the ONERA M6 wake's root).
-  std::map<std::pair<Index, Index>, int> outer_edge_uses;
-  // Nodes of the other outer faces: a hexahedron touching them is split as usual, so
-  // caps stay away from where the marked hull meets the rest (a wake's trailing edge,
-  // the tip trailing edge), whose faces meet at angles a cap could cross (a twisted tip).
-  // Prisms are capped regardless: the one marked prism of the march, the first cell
-  // between the two sheet lines at a junction, has no split point off its edges.
-  std::vector<char> plain_hull_node;
-
-  bool on_footprint(const Index* corners, int count) const {
-    for (int k = 0; k < count; ++k) {
-      const auto uses = outer_edge_uses.find(std::minmax(corners[k], corners[(k + 1) % count]));
-      if (uses != outer_edge_uses.end() && uses->second == 1) return true;
-    }
-    return false;
-  }
-};
-
-CapRules cap_rules(const MixedMesh& mesh, const OuterLayer& layer, const InterfaceOptions& options) {
-  CapRules rules;
-  const int capped_marker = options.capped_marker.empty() ? -1 : mesh.find_marker(options.capped_marker);
-  if (capped_marker >= 0)
-    for (std::size_t face = 0; face < mesh.face_count(FaceType::quad); ++face)
-      if (mesh.faces(FaceType::quad).markers[face] == capped_marker)
-        rules.capped_quads.insert(sorted_face_key(mesh.face(FaceType::quad, face), 4));
-  rules.plain_hull_node.assign(mesh.points.size(), 0);
-  for (const auto& [type, cells] :
-       {std::pair{CellType::hexahedron, &layer.hexahedra}, std::pair{CellType::prism, &layer.prisms}})
-    for (const OuterCell& outer : *cells) {
-      Index corners[4] = {-1, -1, -1, -1};
-      const int count = face_nodes(mesh, {type, static_cast<Index>(outer.cell), outer.outer_face}, corners);
-      for (int k = 0; k < count; ++k)
-        ++rules.outer_edge_uses[std::minmax(corners[k], corners[(k + 1) % count])];
-      if (count == 4 && rules.capped_quads.count(sorted_face_key(corners, 4))) continue;
-      for (int corner = 0; corner < count; ++corner)
-        rules.plain_hull_node[static_cast<std::size_t>(corners[corner])] = 1;
-    }
-  return rules;
-}
-
 // A cell is split when a quad faces the far field; a prism whose outer faces are
 // triangles passes through and adds them to the hull as they are. Cells with an outer
 // quad tagged capped_marker are capped instead, except hexahedra that touch another
-// outer face or have a marked quad on the footprint.
+// outer face or have a marked quad on the footprint that cannot lean on the plane (more
+// than one footprint edge, or no plane quad under it).
 void choose_treatment(const MixedMesh& mesh, const OuterCells& outer, const CapRules& rules,
                       std::vector<char>& split, std::vector<char>& capped) {
   const CellType type = outer.type;
@@ -628,7 +709,7 @@ void choose_treatment(const MixedMesh& mesh, const OuterCells& outer, const CapR
       quad = true;
       const bool marked = rules.capped_quads.count(sorted_face_key(corners, 4)) > 0;
       capped[cell] = capped[cell] || marked;
-      footprint = footprint || (marked && rules.on_footprint(corners, 4));
+      footprint = footprint || (marked && rules.on_footprint(corners, 4) && rules.plane_edge(corners) < 0);
     }
     const Index* nodes = mesh.cell(type, cell);
     auto plain = [&](Index node) { return rules.plain_hull_node[static_cast<std::size_t>(node)] != 0; };
@@ -696,7 +777,7 @@ void replace_outer_cells(const MixedMesh& mesh, const OuterCells& outer, const C
   for (std::size_t cell : outer.order)
     if (capped[cell])
       cap_cell(type, cell, mesh.cell(type, cell), outer_faces[cell], block.regions[cell], options,
-               options.marked_cap_height, false, result, &tall_caps);
+               options.marked_cap_height, false, result, &tall_caps, &rules);
   for (std::size_t item = 0; item < outer.order.size(); ++item) {
     const std::size_t cell = outer.order[item];
     if (capped[cell]) continue;
@@ -764,7 +845,11 @@ InterfaceResult split_interface(const MixedMesh& mesh, const OuterLayer& layer,
       out.add_face(type, nodes, mesh.faces(type).markers[face]);
     }
   }
-  result.lowered_caps = interface_detail::lower_crossing_caps(out, result.hull, tall_caps);
+  std::optional<interface_detail::Plane> plane;
+  if (!rules.plane_quads.empty())
+    plane = interface_detail::Plane{mesh.points[static_cast<std::size_t>(rules.plane_quads.begin()->first.first)],
+                                    rules.plane_quads.begin()->second.second};
+  result.lowered_caps = interface_detail::lower_crossing_caps(out, result.hull, tall_caps, plane);
   const int hull_marker = out.marker(options.hull_marker);
   for (const auto& triangle : result.hull) out.add_face(FaceType::triangle, triangle.data(), hull_marker);
   return result;

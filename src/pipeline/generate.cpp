@@ -210,6 +210,8 @@ InterfaceResult interface_stage(const BoundaryLayer& layers, const GenerateOptio
     // The cells the march tagged for capping, under whatever name it tagged them.
     if (!interface_options.capped_marker.empty())
       interface_options.capped_marker = options.march.hull_side_marker;
+    if (!interface_options.symmetry_marker.empty())
+      interface_options.symmetry_marker = options.march.symmetry_marker;
     try {
       return split_interface(layers.mesh, outer, interface_options);
     } catch (const UnsplittableCellError& error) {

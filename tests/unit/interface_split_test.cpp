@@ -478,6 +478,20 @@ TEST(InterfaceSplit, CellsOfMarkedOuterQuadsAreCappedNotSplit) {
   EXPECT_THROW(split_interface(input, layer, flat), Error);
 }
 
+// Calls visit(middle of its quad, apex) for every pyramid of the split whose apex is a
+// new point (a cap's, or a split cell's centre).
+template <typename Visit>
+void for_each_new_apex(const InterfaceResult& result, std::size_t input_points, Visit visit) {
+  for (std::size_t cell = 0; cell < result.mesh.cell_count(CellType::pyramid); ++cell) {
+    const Index* nodes = result.mesh.cell(CellType::pyramid, cell);
+    if (static_cast<std::size_t>(nodes[4]) < input_points) continue;
+    Vector3 middle = Vector3::Zero();
+    for (int corner = 0; corner < 4; ++corner)
+      middle += 0.25 * result.mesh.points[static_cast<std::size_t>(nodes[corner])];
+    visit(middle, result.mesh.points[static_cast<std::size_t>(nodes[4])]);
+  }
+}
+
 // A block of 8 × 5 × 1 cells of `size` (x, y, 1) whose tops are raised by `slope`
 // times the distance from x = 4 size.x (a valley there), the tops of cells 2–5 in x
 // marked, so the cells 3 and 4 of rows 1–3 are capped (rows 0 and 4 reach the footprint). Returns each cap's
@@ -504,19 +518,14 @@ std::vector<std::pair<Vector3, double>> cap_heights(const Vector3& size, double 
   }
   result = split_interface(input, top_layer(8, 5, 1));
   std::vector<std::pair<Vector3, double>> heights;
-  for (std::size_t cell = 0; cell < result.mesh.cell_count(CellType::pyramid); ++cell) {
-    const Index* nodes = result.mesh.cell(CellType::pyramid, cell);
-    if (static_cast<std::size_t>(nodes[4]) < input.points.size()) continue;
-    Vector3 middle = Vector3::Zero();
-    for (int corner = 0; corner < 4; ++corner)
-      middle += 0.25 * result.mesh.points[static_cast<std::size_t>(nodes[corner])];
+  for_each_new_apex(result, input.points.size(), [&](const Vector3& middle, const Vector3& apex) {
     // Caps stand on the tops over x 3–5 size.x; the split cells' pyramids have their
     // centre as apex, inside the cell, below its top.
     const double top = 1.0 + rise(middle.x());
     if (std::abs(middle.z() - top) > 1e-9 || middle.x() < 3.0 * size.x() || middle.x() > 5.0 * size.x())
-      continue;
-    heights.push_back({middle, (result.mesh.points[static_cast<std::size_t>(nodes[4])] - middle).norm()});
-  }
+      return;
+    heights.push_back({middle, (apex - middle).norm()});
+  });
   return heights;
 }
 
@@ -611,21 +620,142 @@ TEST(InterfaceSplit, NeighbouringCapsStandWithinFortyFiveDegrees) {
                                                                                 {d, a, 0},
                                                                                 {d, 0, 1}})
     hull.push_back(triangle);
-  EXPECT_EQ(interface_detail::lower_crossing_caps(mesh, hull, caps), 1u);
+  EXPECT_EQ(interface_detail::lower_crossing_caps(mesh, hull, caps, std::nullopt), 1u);
   EXPECT_NEAR(caps[0].height, 0.5, 1e-12);
   EXPECT_NEAR(caps[1].height, 1.5, 1e-9);
   EXPECT_NEAR(mesh.points[static_cast<std::size_t>(caps[1].apex)].z(), 1.5, 1e-9);
 }
 
-// Next to the footprint (the hull's free edges, here the block's sides) a cap stands no
-// higher than its quad's middle is from it: on quads 10 × 1 (tall height 2) the caps of
-// rows 1 and 3 (1.5 from the side) stand 1.5, those of the middle row (2.5) stay at 2.
-TEST(InterfaceSplit, CapsRiseFromTheFootprintAtFortyFiveDegrees) {
+// A block of 8 × 5 × 1 cells 10 long in x and 1 wide in y (a wake's end rows), tops
+// rising by `tilt` per unit of y (a sheet with dihedral, its normals leaning towards
+// y = 0), the tops of cells 2–5 in x marked and the side at y = 0 tagged as the symmetry
+// plane; with `row_on_plane_marked` false the tops of row 0 are plain. Cells 3 and 4 of
+// rows 0 (if marked) to 3 are capped (cells 2 and 5 touch the plain tops, row 4 reaches
+// the untagged side). Returns each cap's apex by row (y of its quad's middle).
+std::map<int, std::vector<Vector3>> caps_next_to_the_plane(double tilt, bool row_on_plane_marked,
+                                                          InterfaceResult& result) {
+  MixedMesh input = hexahedron_block(
+      8, 5, 1, [&](const Vector3& point) { return Vector3(10.0 * point.x(), point.y(), point.z() + tilt * point.y()); });
+  const int marked = input.marker("hull_side");
+  const int symmetry = input.marker("symmetry");
+  for (std::size_t face = 0; face < input.face_count(FaceType::quad); ++face) {
+    const Index* nodes = input.face(FaceType::quad, face);
+    Vector3 middle = Vector3::Zero();
+    bool on_plane = true;
+    for (int corner = 0; corner < 4; ++corner) {
+      const Vector3& point = input.points[static_cast<std::size_t>(nodes[corner])];
+      middle += 0.25 * point;
+      on_plane = on_plane && point.y() == 0.0;
+    }
+    if (on_plane) input.faces(FaceType::quad).markers[face] = symmetry;
+    const bool top = std::abs(middle.z() - (1.0 + tilt * middle.y())) < 1e-12;
+    if (top && middle.x() > 20.0 && middle.x() < 60.0 && (row_on_plane_marked || middle.y() > 1.0))
+      input.faces(FaceType::quad).markers[face] = marked;
+  }
+  result = split_interface(input, top_layer(8, 5, 1));
+  std::map<int, std::vector<Vector3>> apexes;
+  for_each_new_apex(result, input.points.size(), [&](const Vector3& middle, const Vector3& apex) {
+    if (std::abs(middle.z() - (1.0 + tilt * middle.y())) > 1e-9) return;  // a split cell's pyramid
+    apexes[static_cast<int>(std::floor(middle.y()))].push_back(apex);
+  });
+  return apexes;
+}
+
+// Next to the symmetry plane a cap leans on it: on quads 10 × 1 (tall height 2) the caps
+// of row 0 stand 2 over the middle of their edge on the plane, in the plane, and their
+// face there is a symmetry triangle, not a hull triangle; the caps of the next rows stand
+// 2 high as everywhere (a slot between the plane and a tall cap is filled by the leaning
+// one). The mesh stays conforming with every boundary face tagged.
+TEST(InterfaceSplit, CapsNextToTheSymmetryPlaneLeanOnIt) {
   InterfaceResult result;
-  const auto heights = cap_heights(Vector3(10, 1, 1), 0.0, result);
-  ASSERT_EQ(heights.size(), 6u);
-  EXPECT_EQ(result.lowered_caps, 4u);
-  for (const auto& [middle, height] : heights)
-    EXPECT_NEAR(height, std::abs(middle.y() - 2.5) < 1e-9 ? 2.0 : 1.5, 1e-9)
-        << "cap over (" << middle.x() << ", " << middle.y() << ")";
+  const auto apexes = caps_next_to_the_plane(0.0, true, result);
+  ASSERT_EQ(result.capped_cells, 8u);
+  EXPECT_EQ(result.lowered_caps, 0u);
+  EXPECT_EQ(invalid_cells(result.mesh), 0);
+  ASSERT_EQ(apexes.at(0).size(), 2u);
+  for (const Vector3& apex : apexes.at(0)) {
+    EXPECT_EQ(apex.y(), 0.0);
+    EXPECT_NEAR(apex.z(), 3.0, 1e-12);
+  }
+  for (int row = 1; row <= 3; ++row)
+    for (const Vector3& apex : apexes.at(row)) {
+      EXPECT_NEAR(apex.y(), row + 0.5, 1e-12);
+      EXPECT_NEAR(apex.z(), 3.0, 1e-12);
+    }
+  const FaceConnectivity faces = match_faces(result.mesh);
+  EXPECT_TRUE(faces.conforming());
+  EXPECT_TRUE(faces.untagged_boundary.empty());
+  EXPECT_TRUE(faces.stray_boundary_faces.empty());
+  const int symmetry = result.mesh.find_marker("symmetry");
+  std::size_t plane_triangles = 0;
+  for (std::size_t face = 0; face < result.mesh.face_count(FaceType::triangle); ++face)
+    plane_triangles += result.mesh.faces(FaceType::triangle).markers[face] == symmetry;
+  EXPECT_EQ(plane_triangles, 2u);
+  // The hull's free edges (its footprint) now run up to each leaning apex and down again.
+  std::size_t through_apexes = 0;
+  for (const auto& edge : triangle_free_edges(result.hull))
+    for (Index node : edge)
+      through_apexes += result.mesh.points[static_cast<std::size_t>(node)].z() > 2.5;
+  EXPECT_EQ(through_apexes, 4u);
+}
+
+// On a sheet whose normals lean towards the plane (tops rising 0.6 per unit of y, 31
+// degrees), the caps turn parallel to the plane and keep their height: each apex stands
+// 2 straight above its quad's middle in z, as far from the plane as the middle, so
+// nothing leans across the plane and the caps stand parallel to the leaning ones on it.
+// With row 0's tops plain, rows 0 and 1 are split (row 1 touches row 0's tops) and the
+// caps of rows 2 and 3 turn the same.
+TEST(InterfaceSplit, CapsLeaningTowardsTheSymmetryPlaneTurnParallelToIt) {
+  for (const bool row_on_plane_marked : {false, true}) {
+    InterfaceResult result;
+    const auto apexes = caps_next_to_the_plane(0.6, row_on_plane_marked, result);
+    ASSERT_EQ(result.capped_cells, row_on_plane_marked ? 8u : 4u);
+    EXPECT_EQ(result.lowered_caps, 0u);
+    EXPECT_EQ(invalid_cells(result.mesh), 0);
+    EXPECT_TRUE(match_faces(result.mesh).conforming());
+    for (int row = row_on_plane_marked ? 0 : 2; row <= 3; ++row)
+      for (const Vector3& apex : apexes.at(row)) {
+        EXPECT_NEAR(apex.y(), row == 0 ? 0.0 : row + 0.5, 1e-12) << "row " << row;
+        EXPECT_NEAR(apex.z(), 1.0 + 0.6 * (row == 0 ? 0.0 : row + 0.5) + 2.0, 1e-12) << "row " << row;
+      }
+  }
+}
+
+// Two caps on coplanar quads 0.1 wide and 2 long sharing a long edge, their directions
+// turned by 20 degrees towards each other (as over a concave fold, here steeper than
+// the alignment's 20 degrees so that it leaves them alone), apexes 0.4 out: across the
+// shared edge the apexes would be 0.1 - 2 x 0.4 sin 20 deg apart, crossed over. Both
+// come down by the same factor until they are half the middles' distance apart.
+TEST(InterfaceSplit, NeighbouringCapsKeepTheirApexesApartAcrossTheirSharedEdge) {
+  MixedMesh mesh;
+  for (double x : {-0.1, 0.0, 0.1})
+    for (double y : {0.0, 2.0}) mesh.points.push_back(Vector3(x, y, 0.0));
+  // Corners 0 (-0.1,0) 1 (-0.1,2) 2 (0,0) 3 (0,2) 4 (0.1,0) 5 (0.1,2); quads wound upwards.
+  const std::array<std::array<Index, 4>, 2> quads{{{0, 2, 3, 1}, {2, 4, 5, 3}}};
+  const double turn = 20.0 * M_PI / 180.0;
+  std::vector<interface_detail::TallCap> caps;
+  std::vector<std::array<Index, 3>> hull;
+  for (std::size_t k = 0; k < 2; ++k) {
+    const Vector3 middle(k == 0 ? -0.05 : 0.05, 1.0, 0.0);
+    const Vector3 direction(k == 0 ? std::sin(turn) : -std::sin(turn), 0.0, std::cos(turn));
+    const Index apex = static_cast<Index>(mesh.points.size());
+    mesh.points.push_back(middle + 0.4 * direction);
+    const auto& quad = quads[k];
+    caps.push_back({apex,
+                    middle,
+                    direction,
+                    direction,
+                    0.4,
+                    0.01,
+                    {quad[0], quad[1], quad[2], quad[3], apex},
+                    hull.size()});
+    for (std::size_t corner = 0; corner < 4; ++corner)
+      hull.push_back({quad[corner], quad[(corner + 1) % 4], apex});
+  }
+  EXPECT_EQ(interface_detail::lower_crossing_caps(mesh, hull, caps, std::nullopt), 2u);
+  const double across = mesh.points[static_cast<std::size_t>(caps[1].apex)].x() -
+                        mesh.points[static_cast<std::size_t>(caps[0].apex)].x();
+  EXPECT_GE(across, 0.05 - 1e-9);
+  EXPECT_NEAR(caps[0].height, caps[1].height, 1e-12);
+  EXPECT_LT(caps[0].height, 0.4);
 }

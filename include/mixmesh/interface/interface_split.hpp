@@ -77,6 +77,11 @@ struct InterfaceOptions {
   // the tip trailing edge) are split as usual. Empty: every cell with an outer quad is
   // split. (mixmesh::generate passes the march's hull_side_marker.)
   std::string capped_marker = "hull_side";
+  // The layers' faces on the symmetry plane carry this marker. A capped cell whose outer
+  // quad has an edge on the plane leans its cap on it: the apex stands in the plane over
+  // that edge, and the cap's face there takes this marker (docs/interface.md, *Caps
+  // near the symmetry plane*). Empty, or no such face: such cells are split.
+  std::string symmetry_marker = "symmetry";
   // Cap height of those cells, times the quad's shortest edge (a wake's quads are long
   // and narrow: a higher apex keeps the cap from being flat along the quad); > 0.
   double marked_cap_height = 0.5;
