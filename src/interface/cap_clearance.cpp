@@ -57,9 +57,17 @@ bool lower_to(MixedMesh& mesh, TallCap& cap, double height) {
   return true;
 }
 
-using CapPairs = std::vector<std::vector<std::size_t>>;
+// Two caps whose quads share an edge, and that edge.
+struct SharedEdge {
+  std::size_t one = 0, other = 0;
+  std::pair<Index, Index> ends;
+};
 
-// Per cap, the caps that share an edge of its quad.
+struct CapPairs {
+  std::vector<std::vector<std::size_t>> neighbours;  // per cap, the caps sharing an edge of its quad
+  std::vector<SharedEdge> shared;                    // each such pair once
+};
+
 CapPairs cap_pairs(const std::vector<TallCap>& caps) {
   std::map<std::pair<Index, Index>, std::vector<std::size_t>> edge_caps;
   for (std::size_t cap = 0; cap < caps.size(); ++cap)
@@ -67,11 +75,15 @@ CapPairs cap_pairs(const std::vector<TallCap>& caps) {
       edge_caps[std::minmax(caps[cap].pyramid[static_cast<std::size_t>(k)],
                             caps[cap].pyramid[static_cast<std::size_t>((k + 1) % 4)])]
           .push_back(cap);
-  CapPairs pairs(caps.size());
+  CapPairs pairs;
+  pairs.neighbours.resize(caps.size());
   for (const auto& [edge, sharing] : edge_caps)
     for (std::size_t first : sharing)
-      for (std::size_t second : sharing)
-        if (first != second) pairs[first].push_back(second);
+      for (std::size_t second : sharing) {
+        if (first == second) continue;
+        pairs.neighbours[first].push_back(second);
+        if (first < second) pairs.shared.push_back({first, second, edge});
+      }
   return pairs;
 }
 
@@ -96,7 +108,7 @@ std::vector<char> level_neighbouring_caps(MixedMesh& mesh, std::vector<TallCap>&
     const auto [height, cap] = queue.top();
     queue.pop();
     if (height > caps[cap].height) continue;  // a stale entry
-    for (std::size_t neighbour : pairs[cap]) {
+    for (std::size_t neighbour : pairs.neighbours[cap]) {
       TallCap& next = caps[neighbour];
       const double bound = std::max(next.lowest, height + (next.middle - caps[cap].middle).norm());
       if (next.height > bound * (1.0 + 1e-9) && lower_to(mesh, next, bound)) {
@@ -106,19 +118,6 @@ std::vector<char> level_neighbouring_caps(MixedMesh& mesh, std::vector<TallCap>&
     }
   }
   return lowered;
-}
-
-// The edge two caps' quads share, as a unit vector, or zero when they share none.
-Vector3 shared_edge(const MixedMesh& mesh, const TallCap& one, const TallCap& other) {
-  Index ends[2] = {-1, -1};
-  int found = 0;
-  for (int k = 0; k < 4 && found < 2; ++k)
-    for (int j = 0; j < 4; ++j)
-      if (one.pyramid[static_cast<std::size_t>(k)] == other.pyramid[static_cast<std::size_t>(j)])
-        ends[found++] = one.pyramid[static_cast<std::size_t>(k)];
-  if (found < 2) return Vector3::Zero();
-  return (mesh.points[static_cast<std::size_t>(ends[1])] - mesh.points[static_cast<std::size_t>(ends[0])])
-      .normalized();
 }
 
 // Neighbouring caps keep their apexes apart across their shared edge: at least half as
@@ -137,30 +136,30 @@ std::vector<char> separate_neighbouring_caps(MixedMesh& mesh, std::vector<TallCa
   std::vector<char> lowered(caps.size(), 0);
   for (int pass = 0; pass < 4; ++pass) {
     bool moved = false;
-    for (std::size_t first = 0; first < caps.size(); ++first)
-      for (std::size_t second : pairs[first]) {
-        if (second < first) continue;
-        TallCap& one = caps[first];
-        TallCap& other = caps[second];
-        const Vector3 edge = shared_edge(mesh, one, other);
-        Vector3 across = other.middle - one.middle;
-        across -= across.dot(edge) * edge;
-        const double distance = across.norm();
-        if (!(distance > 0.0)) continue;
-        across /= distance;
-        // The apexes' separation across the edge with both heights scaled by s:
-        // distance - s closing.
-        const double closing = -(other.height * other.direction - one.height * one.direction).dot(across);
-        if (!(closing > 0.5 * distance)) continue;
-        const double scale = 0.5 * distance / closing;
-        for (TallCap* cap : {&one, &other}) {
-          const double height = std::max(cap->lowest, scale * cap->height);
-          if (cap->height > height * (1.0 + 1e-9) && lower_to(mesh, *cap, height)) {
-            lowered[static_cast<std::size_t>(cap - caps.data())] = 1;
-            moved = true;
-          }
+    for (const SharedEdge& pair : pairs.shared) {
+      TallCap& one = caps[pair.one];
+      TallCap& other = caps[pair.other];
+      const Vector3 edge = (mesh.points[static_cast<std::size_t>(pair.ends.second)] -
+                            mesh.points[static_cast<std::size_t>(pair.ends.first)])
+                               .normalized();
+      Vector3 across = other.middle - one.middle;
+      across -= across.dot(edge) * edge;
+      const double distance = across.norm();
+      if (!(distance > 0.0)) continue;
+      across /= distance;
+      // The apexes' separation across the edge with both heights scaled by s:
+      // distance - s closing.
+      const double closing = -(other.height * other.direction - one.height * one.direction).dot(across);
+      if (!(closing > 0.5 * distance)) continue;
+      const double scale = 0.5 * distance / closing;
+      for (const std::size_t cap : {pair.one, pair.other}) {
+        const double height = std::max(caps[cap].lowest, scale * caps[cap].height);
+        if (caps[cap].height > height * (1.0 + 1e-9) && lower_to(mesh, caps[cap], height)) {
+          lowered[cap] = 1;
+          moved = true;
         }
       }
+    }
     if (!moved) break;
   }
   return lowered;
@@ -182,7 +181,7 @@ void align_neighbouring_caps(MixedMesh& mesh, std::vector<TallCap>& caps, const 
     std::vector<Vector3> direction(caps.size());
     for (std::size_t cap = 0; cap < caps.size(); ++cap) {
       direction[cap] = caps[cap].direction;
-      for (std::size_t neighbour : pairs[cap])
+      for (std::size_t neighbour : pairs.neighbours[cap])
         if (caps[neighbour].normal.dot(caps[cap].normal) > least_cosine) direction[cap] += caps[neighbour].direction;
       direction[cap].normalize();
     }

@@ -524,7 +524,8 @@ CapRules cap_rules(const MixedMesh& mesh, const OuterLayer& layer, const Interfa
     }
   // The plane quads: the symmetry plane's quads with a footprint edge.
   const int symmetry_marker = options.symmetry_marker.empty() ? -1 : mesh.find_marker(options.symmetry_marker);
-  for (std::size_t face = 0; face < mesh.face_count(FaceType::quad) && symmetry_marker >= 0; ++face) {
+  if (symmetry_marker < 0) return rules;
+  for (std::size_t face = 0; face < mesh.face_count(FaceType::quad); ++face) {
     const Index* nodes = mesh.face(FaceType::quad, face);
     const int marker = mesh.faces(FaceType::quad).markers[face];
     if (marker != symmetry_marker || outer_faces.count(sorted_face_key(nodes, 4))) continue;
@@ -585,8 +586,8 @@ void cap_cell(CellType type, std::size_t cell, const Index* nodes, unsigned oute
     const double reach = split_tried ? shortest : std::max(shortest, minimum_cap_reach * longest);
     const double lowest_reach =
         split_tried ? shortest : std::max(shortest, std::min(minimum_cap_reach * longest, 2.0 * shortest));
-    Vector3 normal = face_area_vector(out.points, corners, 4).normalized();
-    const Vector3 quad_middle = middle;
+    const Vector3 quad_normal = face_area_vector(out.points, corners, 4).normalized();
+    Vector3 normal = quad_normal;
     const int plane_edge = rules ? rules->plane_edge(corners) : -1;
     const std::pair<int, Vector3>* plane_quad =
         plane_edge >= 0 ? &rules->plane_quads.at(std::minmax(corners[plane_edge], corners[(plane_edge + 1) % 4]))
@@ -595,53 +596,48 @@ void cap_cell(CellType type, std::size_t cell, const Index* nodes, unsigned oute
     // against the plane that only low caps keep from folding, and low caps over a
     // wake's long end quads are flat (175-176 deg on random wings with the wake's
     // end rows metres long and centimetres wide). Leaning on the plane, the cap fills
-    // that space and stands as tall as its neighbours.
-    const auto lean_on_plane = [&] {
-      const Vector3& first = out.points[static_cast<std::size_t>(corners[plane_edge])];
-      const Vector3& second = out.points[static_cast<std::size_t>(corners[(plane_edge + 1) % 4])];
-      const Vector3 plane_normal = plane_quad->second.normalized();
-      const Vector3 along = (second - first).normalized();
-      Vector3 up = normal - normal.dot(plane_normal) * plane_normal;
-      up -= up.dot(along) * along;
-      if (!(up.norm() > 0.5)) return false;  // the quad leans over the plane itself
-      middle = 0.5 * (first + second);
-      normal = up.normalized();
-      return true;
-    };
-    const bool leaning = plane_edge >= 0 && !split_tried && lean_on_plane();
+    // that space and stands as tall as its neighbours: its apex goes over the middle of
+    // the edge on the plane, along the quad's normal turned into the plane.
     const Index apex = static_cast<Index>(out.points.size());
-    out.points.push_back(middle + cap_height * reach * normal);
+    out.points.push_back(middle);
     // Seen from the apex (outside) the outward winding is counter-clockwise already.
     const Index pyramid[5] = {corners[0], corners[1], corners[2], corners[3], apex};
     // A twisted quad needs a higher apex (its corner normals lean away from the mean
     // normal): raise it, doubling, up to cap_height_limit times the quad's longest
-    // diagonal, and stop at the first valid cap.
+    // diagonal, and stop at the first valid cap. Says whether the cap is valid.
     const double diagonal = std::max(
         (out.points[static_cast<std::size_t>(corners[2])] - out.points[static_cast<std::size_t>(corners[0])])
             .norm(),
         (out.points[static_cast<std::size_t>(corners[3])] - out.points[static_cast<std::size_t>(corners[1])])
             .norm());
-    // (A quad with an edge of zero length gets no cap: its height would stay zero.)
-    for (double height = cap_height * reach; height > 0.0 &&
-                                             !cell_shape(CellType::pyramid, out.points, pyramid).valid() &&
-                                             2.0 * height <= options.cap_height_limit * diagonal;) {
-      height *= 2.0;
-      out.points.back() = middle + height * normal;
-    }
-    if (leaning && !cell_shape(CellType::pyramid, out.points, pyramid).valid()) {
-      // No leaning cap is valid (a strongly twisted quad): the cap over the middle.
-      middle = quad_middle;
-      normal = face_area_vector(out.points, corners, 4).normalized();
-      out.points.pop_back();
-      out.points.push_back(middle + cap_height * reach * normal);
-      for (double height = cap_height * reach;
-           height > 0.0 && !cell_shape(CellType::pyramid, out.points, pyramid).valid() &&
-           2.0 * height <= options.cap_height_limit * diagonal;) {
+    const auto stand = [&](const Vector3& base, const Vector3& direction) {
+      out.points.back() = base + cap_height * reach * direction;
+      // (A quad with an edge of zero length gets no cap: its height would stay zero.)
+      for (double height = cap_height * reach; height > 0.0 &&
+                                               !cell_shape(CellType::pyramid, out.points, pyramid).valid() &&
+                                               2.0 * height <= options.cap_height_limit * diagonal;) {
         height *= 2.0;
-        out.points.back() = middle + height * normal;
+        out.points.back() = base + height * direction;
+      }
+      return cell_shape(CellType::pyramid, out.points, pyramid).valid();
+    };
+    bool leans = false;
+    if (plane_edge >= 0 && !split_tried) {
+      const Vector3& first = out.points[static_cast<std::size_t>(corners[plane_edge])];
+      const Vector3& second = out.points[static_cast<std::size_t>(corners[(plane_edge + 1) % 4])];
+      const Vector3 plane_normal = plane_quad->second.normalized();
+      const Vector3 along = (second - first).normalized();
+      Vector3 up = quad_normal - quad_normal.dot(plane_normal) * plane_normal;
+      up -= up.dot(along) * along;
+      // Not where the quad leans over the plane itself, nor where no leaning cap is
+      // valid (a strongly twisted quad): there the cap stands over the quad's middle.
+      if (up.norm() > 0.5 && stand(0.5 * (first + second), up.normalized())) {
+        leans = true;
+        middle = 0.5 * (first + second);
+        normal = up.normalized();
       }
     }
-    const bool leans = leaning && middle != quad_middle;
+    if (!leans) stand(middle, normal);
     if (!cell_shape(CellType::pyramid, out.points, pyramid).valid())
       throw UnsplittableCellError(
           "interface: " + std::string(name(type)) + " " + std::to_string(cell) +
