@@ -212,8 +212,11 @@ Vector3 stack_middle(CellType type, const std::vector<Vector3>& points, const st
 // by 1.2), which keeps the tetrahedra on its top steep but leaves the pyramid on its
 // inner quad flat under a long cell (a scaled Jacobian of about twice the apex's height
 // over the quad's length). Where that pyramid misses options.stack_pyramid_quality, the
-// point slides up towards the stack's middle, in quarters, to the first that meets both
-// bounds, else to the one that misses them least.
+// point slides up towards the stack's middle, in quarters of the way there, to the first
+// that meets both bounds, else to the one that misses them least. It may go on past the
+// middle, as far again: a stack over a blunt base is thinner than a thousandth of its
+// spanwise cells, and only there is the inner pyramid steep enough while the tetrahedra
+// on the top stay within the bound.
 Vector3 split_point(CellType type, std::vector<Vector3>& points, const std::vector<Level>& levels,
                     unsigned flipped, const InterfaceOptions& options, PieceQuality& best) {
   Vector3 centre = Vector3::Zero();
@@ -225,7 +228,7 @@ Vector3 split_point(CellType type, std::vector<Vector3>& points, const std::vect
     const Vector3 low = centre;
     const Vector3 middle = stack_middle(type, points, levels);
     Shortfall missing = shortfall(best, options);
-    for (int quarter = 1; quarter <= 4 && !missing.met(); ++quarter) {
+    for (int quarter = 1; quarter <= 8 && !missing.met(); ++quarter) {
       points.back() = low + 0.25 * quarter * (middle - low);
       const PieceQuality quality = piece_quality(type, points, levels, flipped, options);
       const Shortfall here = shortfall(quality, options);

@@ -213,6 +213,22 @@ TEST(InterfaceSplit, CellsMuchThinnerThanLongAreStackedUntilTheirPyramidsStandUp
   EXPECT_THROW(split_interface(input, top_layer(3, 3, 12), above_one), Error);
 }
 
+// A stack over a blunt base: layers growing by 1.2 to 0.4 mm in all on faces 1 mm wide
+// and 0.45 m long. Even about the stack's middle its inner pyramid stays under the
+// suite's floor of 1e-3 (twice the middle's height over the length is 9e-4); the split
+// point goes on past the middle until it meets the floor, and the tetrahedra on the top
+// stay within the sliver bound.
+TEST(InterfaceSplit, StacksThinnerThanAThousandthOfTheirLengthSplitAboveTheirMiddle) {
+  const double total = std::pow(1.2, 12) - 1.0;
+  const MixedMesh input = hexahedron_block(3, 3, 12, [&](const Vector3& p) {
+    return Vector3(0.001 * p.x(), 0.45 * p.y(), 0.0004 * (std::pow(1.2, p.z()) - 1.0) / total);
+  });
+  const InterfaceResult stacked = split_interface(input, top_layer(3, 3, 12));
+  EXPECT_GE(worst_pyramid(stacked.mesh), 1e-3);
+  EXPECT_LE(largest_tetrahedron_dihedral(stacked.mesh), 170.0);
+  expect_sound_split(input, stacked);
+}
+
 TEST(InterfaceSplit, DiagonalRulesAreDeterministic) {
   // A rhombus top whose long diagonal a-c runs through the smallest top node a.
   MixedMesh input = hexahedron_block(1, 1, 1, [](const Vector3& p) { return p; });
