@@ -544,6 +544,52 @@ CapRules cap_rules(const MixedMesh& mesh, const OuterLayer& layer, const Interfa
 
 constexpr double minimum_cap_reach = 0.4;
 
+// Stands the apex of cap `pyramid` (its last node, the last of `points`) `height` from
+// `base` along `direction` and raises it, doubling, while the cap is inverted and the
+// next height stays within `limit` (a twisted quad's corner normals lean away from its
+// mean normal). Says whether the cap is valid. (A quad with an edge of zero length gets
+// no cap: its height would stay zero.)
+bool raise_cap_apex(std::vector<Vector3>& points, const Index* pyramid, const Vector3& base,
+                    const Vector3& direction, double height, double limit) {
+  points.back() = base + height * direction;
+  for (; height > 0.0 && !cell_shape(CellType::pyramid, points, pyramid).valid() && 2.0 * height <= limit;) {
+    height *= 2.0;
+    points.back() = base + height * direction;
+  }
+  return cell_shape(CellType::pyramid, points, pyramid).valid();
+}
+
+// The worst scaled corner Jacobian of the caps an unsplittable cell would get (cap_cell
+// with split_tried: apex cap_height times the shortest edge over each outer quad's
+// middle, raised while inverted), or -1 when one of them cannot be made valid.
+double unsplittable_cap_quality(CellType type, const std::vector<Vector3>& mesh_points, const Index* nodes,
+                                unsigned outer_faces, const InterfaceOptions& options) {
+  const CellDescriptor& shape = descriptor(type);
+  double worst = 1.0;
+  for (int face = 0; face < shape.face_count; ++face) {
+    const LocalFace& local = shape.faces[static_cast<std::size_t>(face)];
+    if (!((outer_faces >> face) & 1u) || local.node_count != 4) continue;
+    std::vector<Vector3> points(5, Vector3::Zero());
+    double shortest = std::numeric_limits<double>::infinity();
+    for (int corner = 0; corner < 4; ++corner)
+      points[static_cast<std::size_t>(corner)] =
+          mesh_points[static_cast<std::size_t>(nodes[local.nodes[static_cast<std::size_t>(corner)]])];
+    for (int corner = 0; corner < 4; ++corner)
+      shortest = std::min(shortest, (points[static_cast<std::size_t>((corner + 1) % 4)] -
+                                     points[static_cast<std::size_t>(corner)])
+                                        .norm());
+    const Index pyramid[5] = {0, 1, 2, 3, 4};
+    const Vector3 middle = 0.25 * (points[0] + points[1] + points[2] + points[3]);
+    const double diagonal = std::max((points[2] - points[0]).norm(), (points[3] - points[1]).norm());
+    const Vector3 normal = face_area_vector(points, pyramid, 4).normalized();
+    if (!raise_cap_apex(points, pyramid, middle, normal, options.cap_height * shortest,
+                        options.cap_height_limit * diagonal))
+      return -1.0;
+    worst = std::min(worst, cell_shape(CellType::pyramid, points, pyramid).min_corner_jacobian);
+  }
+  return worst;
+}
+
 // Keeps the cell and caps every outer quad with a pyramid outside it, apex above the
 // quad's centre at cap_height × its shortest edge (for a marked cell at least
 // minimum_cap_reach × its longest); the caps' sides join the hull.
@@ -614,15 +660,8 @@ void cap_cell(CellType type, std::size_t cell, const Index* nodes, unsigned oute
         (out.points[static_cast<std::size_t>(corners[3])] - out.points[static_cast<std::size_t>(corners[1])])
             .norm());
     const auto stand = [&](const Vector3& base, const Vector3& direction) {
-      out.points.back() = base + cap_height * reach * direction;
-      // (A quad with an edge of zero length gets no cap: its height would stay zero.)
-      for (double height = cap_height * reach; height > 0.0 &&
-                                               !cell_shape(CellType::pyramid, out.points, pyramid).valid() &&
-                                               2.0 * height <= options.cap_height_limit * diagonal;) {
-        height *= 2.0;
-        out.points.back() = base + height * direction;
-      }
-      return cell_shape(CellType::pyramid, out.points, pyramid).valid();
+      return raise_cap_apex(out.points, pyramid, base, direction, cap_height * reach,
+                            options.cap_height_limit * diagonal);
     };
     bool leans = false;
     if (plane_edge >= 0 && !split_tried) {
@@ -758,6 +797,16 @@ std::vector<SplitChoice> choose_splits(const MixedMesh& mesh, const OuterCells& 
   return choices;
 }
 
+// Whether the valid split of a cell alone leaves a pyramid below split_pyramid_floor
+// where capping the cell gives valid caps with better pyramids.
+bool caps_beat_split(CellType type, const MixedMesh& mesh, const std::vector<unsigned>& outer_faces,
+                     const SplitChoice& choice, const InterfaceOptions& options) {
+  if (choice.cells.size() != 1 || choice.quality.worst_pyramid >= options.split_pyramid_floor) return false;
+  const std::size_t cell = choice.cells.front();
+  return unsplittable_cap_quality(type, mesh.points, mesh.cell(type, cell), outer_faces[cell], options) >
+         choice.quality.worst_pyramid;
+}
+
 // The cells of one type into the result: untouched cells as they are, then the caps of
 // the marked cells, then the splits (or, for an unsplittable cell where allowed, the
 // whole cell capped) and the outer faces of the cells that pass through.
@@ -785,8 +834,12 @@ void replace_outer_cells(const MixedMesh& mesh, const OuterCells& outer, const C
       // The centre split unless no split point keeps every piece valid (thin cells with
       // a warped face): then, if allowed, the cell stays whole and its outer quads are
       // capped; if not, split_cell names the inverted piece.
-      if (choices[item].quality.worst > 0.0 || !options.cap_unsplittable_cells) {
-        split_cell(mesh, type, outer_faces, options, choices[item], result);
+      // So also a cell whose best split leaves a pyramid under the floor, where its caps
+      // are better (InterfaceOptions::split_pyramid_floor).
+      const SplitChoice& choice = choices[item];
+      if ((choice.quality.worst > 0.0 && !caps_beat_split(type, mesh, outer_faces, choice, options)) ||
+          !options.cap_unsplittable_cells) {
+        split_cell(mesh, type, outer_faces, options, choice, result);
       } else {
         result.mesh.add_cell(type, mesh.cell(type, cell), block.regions[cell]);
         cap_cell(type, cell, mesh.cell(type, cell), outer_faces[cell], block.regions[cell], options,
@@ -811,9 +864,11 @@ InterfaceResult split_interface(const MixedMesh& mesh, const OuterLayer& layer,
                                       std::pair{"marked_cap_height", options.marked_cap_height}})
     if (!(value > 0.0) || !std::isfinite(value))
       throw Error(std::string("interface: ") + option + " must be > 0, got " + std::to_string(value));
-  if (!(options.stack_pyramid_quality > 0.0 && options.stack_pyramid_quality <= 1.0))
-    throw Error("interface: stack_pyramid_quality is a scaled Jacobian in (0, 1], got " +
-                std::to_string(options.stack_pyramid_quality));
+  for (const auto& [option, value] : {std::pair{"stack_pyramid_quality", options.stack_pyramid_quality},
+                                      std::pair{"split_pyramid_floor", options.split_pyramid_floor}})
+    if (!(value > 0.0 && value <= 1.0))
+      throw Error(std::string("interface: ") + option + " is a scaled Jacobian in (0, 1], got " +
+                  std::to_string(value));
   const FaceConnectivity connectivity = validate(mesh, layer);
 
   InterfaceResult result;

@@ -369,6 +369,43 @@ TEST(InterfaceSplit, ThinWarpedCellThatCannotBeSplitIsCappedInstead) {
   EXPECT_TRUE(faces.stray_boundary_faces.empty());
 }
 
+// The outermost cell at the trailing edge of a random wing's tip (mm: 64 long, 3-6
+// thick, its inner quad warped by 5): the best split point leaves a pyramid under the
+// floor of 1e-3 on a long side. Kept whole and capped, its cap's pyramid is far better.
+TEST(InterfaceSplit, CellTwistedNearlyFlatIsCappedWhereItsSplitLeavesAFlatPyramid) {
+  const Vector3 corners[8] = {{0.0, 0.0, 0.0},
+                              {3.1921, -0.5391, -0.2108},
+                              {-10.4461, 57.9886, -10.6562},
+                              {-12.8170, 60.6100, -15.0573},
+                              {0.1940, 1.9489, 5.4833},
+                              {3.5097, 1.2712, 5.3140},
+                              {-10.7576, 62.7255, -7.2847},
+                              {-13.0130, 66.0634, -13.0266}};
+  const MixedMesh input = hexahedron_block(1, 1, 1, [&](const Vector3& p) {
+    const int i = static_cast<int>(p.x()), j = static_cast<int>(p.y()), k = static_cast<int>(p.z());
+    return corners[4 * k + (j == 0 ? i : 3 - i)];
+  });
+  ASSERT_EQ(invalid_cells(input), 0);
+  InterfaceOptions split_anyway;
+  split_anyway.split_pyramid_floor = 1e-12;
+  const InterfaceResult split = split_interface(input, top_layer(1, 1, 1), split_anyway);
+  EXPECT_EQ(split.capped_cells, 0u);
+  EXPECT_LT(worst_pyramid(split.mesh), 1e-3);
+
+  const InterfaceResult capped = split_interface(input, top_layer(1, 1, 1));
+  EXPECT_EQ(capped.capped_cells, 1u);
+  EXPECT_EQ(capped.mesh.cell_count(CellType::hexahedron), 1u);
+  EXPECT_EQ(capped.mesh.cell_count(CellType::pyramid), 1u);
+  EXPECT_EQ(capped.hull.size(), 4u);
+  EXPECT_GE(worst_pyramid(capped.mesh), 1e-3);
+  EXPECT_EQ(invalid_cells(capped.mesh), 0);
+  EXPECT_TRUE(match_faces(capped.mesh).conforming());
+
+  InterfaceOptions no_floor;
+  no_floor.split_pyramid_floor = 0.0;
+  EXPECT_THROW(split_interface(input, top_layer(1, 1, 1), no_floor), Error);
+}
+
 TEST(InterfaceSplit, TwistedTopIsCutAlongTheDiagonalThatLetsTheSplitStayValid) {
   // A rhombus cell (top quad 4-5-7-6 in the block's numbering; short diagonal 4-7 along
   // y, long 5-6 along x) whose top and bottom are twisted alike into saddles (5, 6 and
