@@ -797,12 +797,35 @@ std::vector<SplitChoice> choose_splits(const MixedMesh& mesh, const OuterCells& 
   return choices;
 }
 
-// Whether the valid split of a cell alone leaves a pyramid below split_pyramid_floor
-// where capping the cell gives valid caps with better pyramids.
+// The edges of a cell's outer faces.
+std::vector<std::pair<Index, Index>> outer_edges(CellType type, const Index* nodes, unsigned outer_faces) {
+  std::vector<std::pair<Index, Index>> edges;
+  const CellDescriptor& shape = descriptor(type);
+  for (int face = 0; face < shape.face_count; ++face) {
+    if (!((outer_faces >> face) & 1u)) continue;
+    const LocalFace& local = shape.faces[static_cast<std::size_t>(face)];
+    for (int corner = 0; corner < local.node_count; ++corner)
+      edges.push_back(
+          std::minmax(nodes[local.nodes[static_cast<std::size_t>(corner)]],
+                      nodes[local.nodes[static_cast<std::size_t>((corner + 1) % local.node_count)]]));
+  }
+  return edges;
+}
+
+// Whether a valid split (of a cell or a stack) leaves a pyramid below
+// split_pyramid_floor where capping its outer cell gives valid caps with better
+// pyramids, the cells under it in the stack have no face on the hull, and no cap of
+// this kind stands next to it already (`capped_edges`): the valley between two low caps
+// over a long shared edge is flat.
 bool caps_beat_split(CellType type, const MixedMesh& mesh, const std::vector<unsigned>& outer_faces,
-                     const SplitChoice& choice, const InterfaceOptions& options) {
-  if (choice.cells.size() != 1 || choice.quality.worst_pyramid >= options.split_pyramid_floor) return false;
+                     const SplitChoice& choice, const std::set<std::pair<Index, Index>>& capped_edges,
+                     const InterfaceOptions& options) {
+  if (choice.quality.worst_pyramid >= options.split_pyramid_floor) return false;
+  for (std::size_t level = 1; level < choice.cells.size(); ++level)
+    if (outer_faces[choice.cells[level]] != 0u) return false;
   const std::size_t cell = choice.cells.front();
+  for (const auto& edge : outer_edges(type, mesh.cell(type, cell), outer_faces[cell]))
+    if (capped_edges.count(edge)) return false;
   return unsplittable_cap_quality(type, mesh.points, mesh.cell(type, cell), outer_faces[cell], options) >
          choice.quality.worst_pyramid;
 }
@@ -812,7 +835,8 @@ bool caps_beat_split(CellType type, const MixedMesh& mesh, const std::vector<uns
 // whole cell capped) and the outer faces of the cells that pass through.
 void replace_outer_cells(const MixedMesh& mesh, const OuterCells& outer, const CapRules& rules,
                          const FaceConnectivity& connectivity, const InterfaceOptions& options,
-                         InterfaceResult& result, std::vector<interface_detail::TallCap>& tall_caps) {
+                         InterfaceResult& result, std::vector<interface_detail::TallCap>& tall_caps,
+                         std::set<std::pair<Index, Index>>& capped_edges) {
   const CellType type = outer.type;
   std::vector<char> split, capped, stacked;
   choose_treatment(mesh, outer, rules, split, capped);
@@ -834,16 +858,21 @@ void replace_outer_cells(const MixedMesh& mesh, const OuterCells& outer, const C
       // The centre split unless no split point keeps every piece valid (thin cells with
       // a warped face): then, if allowed, the cell stays whole and its outer quads are
       // capped; if not, split_cell names the inverted piece.
-      // So also a cell whose best split leaves a pyramid under the floor, where its caps
-      // are better (InterfaceOptions::split_pyramid_floor).
+      // So also a cell or stack whose best split leaves a pyramid under the floor, where
+      // its outer cell's caps are better (InterfaceOptions::split_pyramid_floor); a
+      // stack's other cells stay whole.
       const SplitChoice& choice = choices[item];
-      if ((choice.quality.worst > 0.0 && !caps_beat_split(type, mesh, outer_faces, choice, options)) ||
+      if ((choice.quality.worst > 0.0 &&
+           !caps_beat_split(type, mesh, outer_faces, choice, capped_edges, options)) ||
           !options.cap_unsplittable_cells) {
         split_cell(mesh, type, outer_faces, options, choice, result);
       } else {
-        result.mesh.add_cell(type, mesh.cell(type, cell), block.regions[cell]);
+        for (std::size_t here : choice.cells)
+          result.mesh.add_cell(type, mesh.cell(type, here), block.regions[here]);
         cap_cell(type, cell, mesh.cell(type, cell), outer_faces[cell], block.regions[cell], options,
                  options.cap_height, true, result);
+        for (const auto& edge : outer_edges(type, mesh.cell(type, cell), outer_faces[cell]))
+          capped_edges.insert(edge);
       }
       continue;
     }
@@ -879,6 +908,7 @@ InterfaceResult split_interface(const MixedMesh& mesh, const OuterLayer& layer,
 
   const CapRules rules = cap_rules(mesh, layer, options);
   std::vector<interface_detail::TallCap> tall_caps;
+  std::set<std::pair<Index, Index>> capped_edges;  // of the cells capped for a flat split
   std::set<FaceKey> hull_faces;  // to drop the old tags of the outer faces
   for (const auto& [type, cells] :
        {std::pair{CellType::hexahedron, &layer.hexahedra}, std::pair{CellType::prism, &layer.prisms}}) {
@@ -888,7 +918,7 @@ InterfaceResult split_interface(const MixedMesh& mesh, const OuterLayer& layer,
       hull_faces.insert(sorted_face_key(corners, count));
     }
     replace_outer_cells(mesh, outer_cells(mesh, type, *cells), rules, connectivity, options, result,
-                        tall_caps);
+                        tall_caps, capped_edges);
   }
 
   for (FaceType type : all_face_types) {

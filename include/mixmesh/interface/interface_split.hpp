@@ -105,11 +105,12 @@ struct InterfaceOptions {
   // long); twice the robustness suite's floor of 1e-3.
   double stack_pyramid_quality = 2e-3;
   int stack_cells = 16;
-  // A cell split alone whose best split point still leaves a pyramid below this scaled
-  // corner Jacobian (a layer cell twisted nearly flat at a tip's trailing edge) is kept
-  // whole and its outer quads capped as an unsplittable cell's, where those caps'
-  // pyramids are better; the robustness suite's floor. (Not stacks: over a blunt base
-  // they lie side by side, and the valley between two low caps is flat.)
+  // A cell or stack whose best split point still leaves a pyramid below this scaled
+  // corner Jacobian (a layer cell twisted nearly flat at a tip's trailing edge, a stack
+  // sheared along the span at a blunt base's end there) keeps its cells whole and its
+  // outer quads are capped as an unsplittable cell's, where those caps' pyramids are
+  // better and no such cap stands next to it (the valley between two low caps over a
+  // long shared edge is flat); the robustness suite's floor.
   double split_pyramid_floor = 1e-3;
 };
 
