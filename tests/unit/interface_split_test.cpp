@@ -390,7 +390,7 @@ TEST(InterfaceSplit, CellTwistedNearlyFlatIsCappedWhereItsSplitLeavesAFlatPyrami
   split_anyway.split_pyramid_floor = 1e-12;
   const InterfaceResult split = split_interface(input, top_layer(1, 1, 1), split_anyway);
   EXPECT_EQ(split.capped_cells, 0u);
-  EXPECT_LT(worst_pyramid(split.mesh), 1e-3);
+  EXPECT_LT(worst_pyramid(split.mesh), InterfaceOptions().split_pyramid_floor);
 
   const InterfaceResult capped = split_interface(input, top_layer(1, 1, 1));
   EXPECT_EQ(capped.capped_cells, 1u);
@@ -407,33 +407,33 @@ TEST(InterfaceSplit, CellTwistedNearlyFlatIsCappedWhereItsSplitLeavesAFlatPyrami
 }
 
 // Columns sheared along their long side, as at a blunt base's end at a tip (mm: faces
-// 0.2 wide and 11 long, four layers 0.06 thick in all, each leaning 0.3 along the
+// 0.2 wide and 11 long, twelve layers 0.05 thick in all, each leaning 0.15 along the
 // span): the best split, a stack, leaves a pyramid under the floor. The column is kept
 // whole and capped instead, and its cap meets the floor; of two such columns side by
 // side only one is (two low caps side by side leave a flat valley over their shared
 // long edge).
 TEST(InterfaceSplit, StacksShearedAlongTheirLengthAreCappedOneInTwo) {
   const auto sheared = [](const Vector3& p) {
-    return Vector3(0.2 * p.x(), 11.0 * p.y() + 0.3 * p.z(), 0.015 * p.z());
+    return Vector3(0.2 * p.x(), 11.0 * p.y() + 0.15 * p.z(), 0.004 * p.z());
   };
-  const MixedMesh column = hexahedron_block(1, 1, 4, sheared);
+  const MixedMesh column = hexahedron_block(1, 1, 12, sheared);
   InterfaceOptions split_anyway;
   split_anyway.split_pyramid_floor = 1e-12;
-  const InterfaceResult split = split_interface(column, top_layer(1, 1, 4), split_anyway);
+  const InterfaceResult split = split_interface(column, top_layer(1, 1, 12), split_anyway);
   EXPECT_EQ(split.capped_cells, 0u);
-  EXPECT_LT(worst_pyramid(split.mesh), 1e-3);
+  EXPECT_LT(worst_pyramid(split.mesh), InterfaceOptions().split_pyramid_floor);
   EXPECT_EQ(split.stacks, 1u);
 
-  const InterfaceResult capped = split_interface(column, top_layer(1, 1, 4));
+  const InterfaceResult capped = split_interface(column, top_layer(1, 1, 12));
   EXPECT_EQ(capped.capped_cells, 1u);
-  EXPECT_EQ(capped.mesh.cell_count(CellType::hexahedron), 4u) << "the stack's cells stay whole";
+  EXPECT_EQ(capped.mesh.cell_count(CellType::hexahedron), 12u) << "the stack's cells stay whole";
   EXPECT_EQ(capped.mesh.cell_count(CellType::pyramid), 1u);
   EXPECT_GE(worst_pyramid(capped.mesh), 1e-3);
   EXPECT_EQ(invalid_cells(capped.mesh), 0);
   EXPECT_TRUE(match_faces(capped.mesh).conforming());
 
-  const MixedMesh pair = hexahedron_block(2, 1, 4, sheared);
-  const InterfaceResult one_capped = split_interface(pair, top_layer(2, 1, 4));
+  const MixedMesh pair = hexahedron_block(2, 1, 12, sheared);
+  const InterfaceResult one_capped = split_interface(pair, top_layer(2, 1, 12));
   EXPECT_EQ(one_capped.capped_cells, 1u);
   EXPECT_EQ(invalid_cells(one_capped.mesh), 0);
   EXPECT_TRUE(match_faces(one_capped.mesh).conforming());
