@@ -559,6 +559,30 @@ bool raise_cap_apex(std::vector<Vector3>& points, const Index* pyramid, const Ve
   return cell_shape(CellType::pyramid, points, pyramid).valid();
 }
 
+// What a cap on a quad (corners outward from its cell) stands on: the quad's middle,
+// its unit normal, its shortest and longest edge and its longer diagonal.
+struct CapBase {
+  Vector3 middle = Vector3::Zero();
+  Vector3 normal = Vector3::Zero();
+  double shortest = std::numeric_limits<double>::infinity();
+  double longest = 0.0;
+  double diagonal = 0.0;
+};
+
+CapBase cap_base(const std::vector<Vector3>& points, const Index* corners) {
+  CapBase base;
+  auto at = [&](int corner) -> const Vector3& { return points[static_cast<std::size_t>(corners[corner])]; };
+  for (int corner = 0; corner < 4; ++corner) {
+    base.middle += 0.25 * at(corner);
+    const double edge = (at((corner + 1) % 4) - at(corner)).norm();
+    base.shortest = std::min(base.shortest, edge);
+    base.longest = std::max(base.longest, edge);
+  }
+  base.normal = face_area_vector(points, corners, 4).normalized();
+  base.diagonal = std::max((at(2) - at(0)).norm(), (at(3) - at(1)).norm());
+  return base;
+}
+
 // The worst scaled corner Jacobian of the caps an unsplittable cell would get (cap_cell
 // with split_tried: apex cap_height times the shortest edge over each outer quad's
 // middle, raised while inverted), or -1 when one of them cannot be made valid.
@@ -569,21 +593,14 @@ double unsplittable_cap_quality(CellType type, const std::vector<Vector3>& mesh_
   for (int face = 0; face < shape.face_count; ++face) {
     const LocalFace& local = shape.faces[static_cast<std::size_t>(face)];
     if (!((outer_faces >> face) & 1u) || local.node_count != 4) continue;
-    std::vector<Vector3> points(5, Vector3::Zero());
-    double shortest = std::numeric_limits<double>::infinity();
+    std::vector<Vector3> points(5, Vector3::Zero());  // the quad's corners and the apex
     for (int corner = 0; corner < 4; ++corner)
       points[static_cast<std::size_t>(corner)] =
           mesh_points[static_cast<std::size_t>(nodes[local.nodes[static_cast<std::size_t>(corner)]])];
-    for (int corner = 0; corner < 4; ++corner)
-      shortest = std::min(shortest, (points[static_cast<std::size_t>((corner + 1) % 4)] -
-                                     points[static_cast<std::size_t>(corner)])
-                                        .norm());
     const Index pyramid[5] = {0, 1, 2, 3, 4};
-    const Vector3 middle = 0.25 * (points[0] + points[1] + points[2] + points[3]);
-    const double diagonal = std::max((points[2] - points[0]).norm(), (points[3] - points[1]).norm());
-    const Vector3 normal = face_area_vector(points, pyramid, 4).normalized();
-    if (!raise_cap_apex(points, pyramid, middle, normal, options.cap_height * shortest,
-                        options.cap_height_limit * diagonal))
+    const CapBase base = cap_base(points, pyramid);
+    if (!raise_cap_apex(points, pyramid, base.middle, base.normal, options.cap_height * base.shortest,
+                        options.cap_height_limit * base.diagonal))
       return -1.0;
     worst = std::min(worst, cell_shape(CellType::pyramid, points, pyramid).min_corner_jacobian);
   }
@@ -611,15 +628,9 @@ void cap_cell(CellType type, std::size_t cell, const Index* nodes, unsigned oute
       result.hull.push_back({corners[0], corners[1], corners[2]});
       continue;
     }
-    Vector3 middle = Vector3::Zero();
-    double shortest = std::numeric_limits<double>::infinity(), longest = 0.0;
-    for (int corner = 0; corner < 4; ++corner) {
-      const Vector3& here = out.points[static_cast<std::size_t>(corners[corner])];
-      middle += 0.25 * here;
-      const double edge = (out.points[static_cast<std::size_t>(corners[(corner + 1) % 4])] - here).norm();
-      shortest = std::min(shortest, edge);
-      longest = std::max(longest, edge);
-    }
+    const CapBase base = cap_base(out.points, corners);
+    const double shortest = base.shortest, longest = base.longest;
+    Vector3 middle = base.middle;
     // The far field fills the valley between the caps of two neighbouring quads with a
     // tetrahedron of their shared edge and the two apexes; its dihedral angle at the
     // apexes' edge is 180 degrees less twice atan(2 h / L) for apex height h over an edge
@@ -635,7 +646,7 @@ void cap_cell(CellType type, std::size_t cell, const Index* nodes, unsigned oute
     const double reach = split_tried ? shortest : std::max(shortest, minimum_cap_reach * longest);
     const double lowest_reach =
         split_tried ? shortest : std::max(shortest, std::min(minimum_cap_reach * longest, 2.0 * shortest));
-    const Vector3 quad_normal = face_area_vector(out.points, corners, 4).normalized();
+    const Vector3& quad_normal = base.normal;
     Vector3 normal = quad_normal;
     const int plane_edge = rules ? rules->plane_edge(corners) : -1;
     const std::pair<int, Vector3>* plane_quad =
@@ -654,14 +665,9 @@ void cap_cell(CellType type, std::size_t cell, const Index* nodes, unsigned oute
     // A twisted quad needs a higher apex (its corner normals lean away from the mean
     // normal): raise it, doubling, up to cap_height_limit times the quad's longest
     // diagonal, and stop at the first valid cap. Says whether the cap is valid.
-    const double diagonal = std::max(
-        (out.points[static_cast<std::size_t>(corners[2])] - out.points[static_cast<std::size_t>(corners[0])])
-            .norm(),
-        (out.points[static_cast<std::size_t>(corners[3])] - out.points[static_cast<std::size_t>(corners[1])])
-            .norm());
-    const auto stand = [&](const Vector3& base, const Vector3& direction) {
-      return raise_cap_apex(out.points, pyramid, base, direction, cap_height * reach,
-                            options.cap_height_limit * diagonal);
+    const auto stand = [&](const Vector3& foot, const Vector3& direction) {
+      return raise_cap_apex(out.points, pyramid, foot, direction, cap_height * reach,
+                            options.cap_height_limit * base.diagonal);
     };
     bool leans = false;
     if (plane_edge >= 0 && !split_tried) {

@@ -22,6 +22,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -112,7 +113,7 @@ struct InterfaceOptions {
   // better and no such cap stands next to it (the valley between two low caps over a
   // long shared edge is flat). The robustness suite's floor, 1e-3 in Verdict's
   // normalisation, which scales a pyramid's corner Jacobian by sqrt(2) (check_mesh.py).
-  double split_pyramid_floor = 1e-3 / 1.4142135623730951;
+  double split_pyramid_floor = 1e-3 / std::sqrt(2.0);
 };
 
 // An outer cell that can neither be split about its centre nor capped (a layer cell
