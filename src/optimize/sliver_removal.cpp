@@ -447,8 +447,15 @@ class SliverRemoval {
       const Vector3 towards_mean = mean - start - plane.dot(mean - start) * plane;
       std::vector<Vector3> trials;
       for (double f : {1.0, 0.5, 0.25}) trials.push_back(start + f * towards_mean);
-      if (!normal.isZero())
+      if (!normal.isZero()) {
         for (double f : {0.05, 0.1, 0.2, 0.4}) trials.push_back(start + f * length * normal);
+        // Steps of a few times the point's height over the opposite face, for slivers
+        // far smaller than the edges round their point: one inserted in the concave
+        // corner between a wake's cap and the wing's hull lies a millimetre off the
+        // cap's face, under edges tens of millimetres long, with the hull half a
+        // millimetre away.
+      }
+
       Change change;
       change.operation = Operation::point_move;
       change.before = change.after = tally();
@@ -460,6 +467,24 @@ class SliverRemoval {
           change.after = here;
           change.moved_to = trial;
         }
+      }
+      // Where no such step helps, steps of a few times the point's height over the
+      // opposite face: a sliver far smaller than the edges round its point (one inserted
+      // in the concave corner between a wake's first cap and the wing's hull lies a
+      // millimetre off the cap's face, under edges tens of millimetres long, with the
+      // hull half a millimetre away) needs a step at its own scale. Only as a fallback:
+      // taken first, such short steps trim slivers that a later insertion would mend.
+      if (!normal.isZero() && !change.after.better_than(change.before)) {
+        const double height = normal.dot(start - u);
+        for (double multiple : {1.0, 2.0, 4.0, 8.0})
+          if (multiple * height < 0.05 * length) {
+            x = start + multiple * height * normal;
+            const Tally here = tally();
+            if (here.better_than(change.after)) {
+              change.after = here;
+              change.moved_to = x;
+            }
+          }
       }
       x = start;
       consider(std::move(change));  // taken only where a trial beat the start

@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <fstream>
 #include <random>
 #include <string>
@@ -263,8 +264,8 @@ PatchResult remove_slivers_round_centre(const std::string& name, double radius) 
 TEST(SliverRemoval, SliversOnTheHullBehindATrailingEdgeNeedNewPoints) {
   // A wing's far field behind its trailing edge, where the hull's quads are long and
   // narrow and nearly flat: tetrahedra lie on two hull triangles of a shallow fold, or
-  // between neighbouring caps, and no flip, split, collapse or move mends the worst;
-  // points inserted above them do.
+  // between neighbouring caps, and no flip, split, collapse or move brings the worst
+  // under 170 degrees; points inserted above them do, and further than the moves.
   MixedMesh without = sliver_patch();
   std::size_t above = 0;
   const double before = largest_dihedral(without, above);
@@ -274,7 +275,8 @@ TEST(SliverRemoval, SliversOnTheHullBehindATrailingEdgeNeedNewPoints) {
   options.insert_points = false;
   const SliverReport plain = remove_slivers(without, options);
   EXPECT_EQ(plain.point_insertions, 0u);
-  EXPECT_GT(largest_dihedral(without, above), 179.0);
+  // Moves at the slivers' own scale bring the worst to 171.5 degrees, still above 170.
+  EXPECT_GT(largest_dihedral(without, above), 170.0);
 
   MixedMesh mesh = sliver_patch();
   const std::size_t points = mesh.points.size();
@@ -283,7 +285,7 @@ TEST(SliverRemoval, SliversOnTheHullBehindATrailingEdgeNeedNewPoints) {
   std::printf("largest dihedral %.2f -> %.2f deg (without insertion %.2f), %zu points inserted\n", before,
               after, plain.largest_dihedral_after, report.point_insertions);
   EXPECT_GE(report.point_insertions, 1u);
-  EXPECT_LT(after, 175.0);
+  EXPECT_LT(after, std::min(175.0, plain.largest_dihedral_after));
   EXPECT_LT(report.above_target_after, plain.above_target_after);
   EXPECT_LE(mesh.points.size(), points + report.point_insertions + report.edge_splits);
   EXPECT_NEAR(total_volume(mesh) / volume, 1.0, 1e-9);
@@ -319,6 +321,21 @@ TEST(SliverRemoval, FlatTetrahedraOnANearlyFlatHullGetASmallCavity) {
   EXPECT_GE(result.report.point_insertions, 1u);
   EXPECT_LT(result.after, 175.0);
   EXPECT_EQ(result.above_170_after, 0u);
+}
+
+TEST(SliverRemoval, PointsInACornerUnderLongEdgesMoveAtTheirOwnScale) {
+  // Where a wake's first cap meets the wing's hull at a closed trailing edge, the cap's
+  // face rises straight from the hull: a concave corner along a 61 mm edge, with the
+  // hull's cells a few tenths of a millimetre across. A point inserted there lies a
+  // millimetre off the cap's face, so its steps of a twentieth of its edges' mean length
+  // (tens of millimetres) all cross the hull; steps of a few times its height over the
+  // opposite face mend it. Without them the pass leaves 177.4 degrees within 1 cm of
+  // the corner (176.1 on a patch cut twice as wide); with them 173.8 (174.5). In the
+  // whole mesh, whose far field has room to move, the pass ends at 165 degrees instead
+  // of 175.3.
+  const PatchResult result = remove_slivers_round_centre("sliver_patch_wake_cap_corner", 0.01);
+  ASSERT_GT(result.before, 178.0);
+  EXPECT_LT(result.after, 175.0);
 }
 
 TEST(SliverRemoval, BadOptionsAreRejected) {
