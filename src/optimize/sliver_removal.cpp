@@ -447,15 +447,8 @@ class SliverRemoval {
       const Vector3 towards_mean = mean - start - plane.dot(mean - start) * plane;
       std::vector<Vector3> trials;
       for (double f : {1.0, 0.5, 0.25}) trials.push_back(start + f * towards_mean);
-      if (!normal.isZero()) {
+      if (!normal.isZero())
         for (double f : {0.05, 0.1, 0.2, 0.4}) trials.push_back(start + f * length * normal);
-        // Steps of a few times the point's height over the opposite face, for slivers
-        // far smaller than the edges round their point: one inserted in the concave
-        // corner between a wake's cap and the wing's hull lies a millimetre off the
-        // cap's face, under edges tens of millimetres long, with the hull half a
-        // millimetre away.
-      }
-
       Change change;
       change.operation = Operation::point_move;
       change.before = change.after = tally();

@@ -20,7 +20,9 @@
 //     into a neighbour (the tetrahedra round their edge go, the others take the
 //     neighbour in its place);
 //   - point smoothing: a point used by tetrahedra only moves to the best of a few trial
-//     positions; on a flat boundary (all its boundary faces triangles in one plane) it
+//     positions (towards its neighbours' mean, off the opposite face by a part of its
+//     edges' mean length, or, where none of those helps, by a few times its height over
+//     that face); on a flat boundary (all its boundary faces triangles in one plane) it
 //     moves within that plane;
 //   - point insertion, for a sliver none of the above mends: a new point at its
 //     circumcentre or over one of its faces, coned over a cavity grown until it is
