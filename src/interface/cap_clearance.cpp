@@ -165,6 +165,57 @@ std::vector<char> separate_neighbouring_caps(MixedMesh& mesh, std::vector<TallCa
   return lowered;
 }
 
+// The far field fills the valley between two neighbouring caps of nearly coplanar quads
+// with the tetrahedron of their shared edge and their two apexes. Where the caps were
+// lowered to keep clear of the hull (a fifth of a long edge high no longer, only a
+// twentieth), the 45 degrees the levelling allows between their apexes is too steep:
+// over the wake's first rows behind a swept trailing edge (random wing 58 of seed 70,
+// quads 3 mm x 365 mm, caps 16 and 19 mm high) the apexes' edge then points at the
+// shared edge and that tetrahedron is flat (173-174 deg). So the taller cap of such a
+// pair comes down, towards its neighbour's height, to the highest of eight steps at
+// which that tetrahedron's largest dihedral angle is within valley_dihedral, or where
+// none is, to the step where it is smallest. Returns the caps lowered.
+std::vector<char> open_valleys(MixedMesh& mesh, std::vector<TallCap>& caps, const CapPairs& pairs,
+                               double valley_dihedral) {
+  constexpr double fold_degrees = 20.0;
+  const double least_cosine = std::cos(fold_degrees * M_PI / 180.0);
+  std::vector<char> lowered(caps.size(), 0);
+  auto valley = [&](const SharedEdge& pair) {
+    return largest_dihedral_degrees(mesh.points[static_cast<std::size_t>(pair.ends.first)],
+                                    mesh.points[static_cast<std::size_t>(pair.ends.second)],
+                                    mesh.points[static_cast<std::size_t>(caps[pair.one].apex)],
+                                    mesh.points[static_cast<std::size_t>(caps[pair.other].apex)]);
+  };
+  for (int pass = 0; pass < 4; ++pass) {
+    bool moved = false;
+    for (const SharedEdge& pair : pairs.shared) {
+      if (caps[pair.one].normal.dot(caps[pair.other].normal) < least_cosine) continue;
+      const double now = valley(pair);
+      if (!(now > valley_dihedral)) continue;
+      const bool one_taller = caps[pair.one].height > caps[pair.other].height;
+      TallCap& taller = caps[one_taller ? pair.one : pair.other];
+      const double low = std::max(taller.lowest, caps[one_taller ? pair.other : pair.one].height);
+      const double high = taller.height;
+      if (!(high > low * (1.0 + 1e-9))) continue;
+      double best_height = high, best_angle = now;
+      for (int step = 1; step <= 8; ++step) {
+        const double height = high - (high - low) * step / 8.0;
+        if (!lower_to(mesh, taller, height)) break;
+        const double angle = valley(pair);
+        if (angle < best_angle) best_angle = angle, best_height = height;
+        if (angle <= valley_dihedral) break;
+      }
+      lower_to(mesh, taller, high);
+      if (best_height < high && best_angle < now - 1e-9 && lower_to(mesh, taller, best_height)) {
+        lowered[static_cast<std::size_t>(&taller - caps.data())] = 1;
+        moved = true;
+      }
+    }
+    if (!moved) break;
+  }
+  return lowered;
+}
+
 // Caps on nearly coplanar neighbouring quads stand along their mean normal. Over a fold
 // of a few degrees between narrow quads their own normals turn towards each other, and
 // apexes tens of quad widths high meet: on random wing 2 of seed 53 two caps 31 mm high
@@ -280,8 +331,9 @@ std::size_t lower_crossing_caps(MixedMesh& mesh, const std::vector<std::array<In
   }
   const std::vector<char> separated = separate_neighbouring_caps(mesh, caps, pairs);
   const std::vector<char> levelled = level_neighbouring_caps(mesh, caps, pairs);
+  const std::vector<char> opened = open_valleys(mesh, caps, pairs, 160.0);
   for (std::size_t cap = 0; cap < caps.size(); ++cap)
-    lowered[cap] = lowered[cap] || separated[cap] || levelled[cap];
+    lowered[cap] = lowered[cap] || separated[cap] || levelled[cap] || opened[cap];
   return static_cast<std::size_t>(std::count(lowered.begin(), lowered.end(), 1));
 }
 

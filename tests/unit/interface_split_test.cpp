@@ -660,34 +660,49 @@ TEST(InterfaceSplit, CapsOverAGentleFoldStandAlongTheirMeanNormal) {
   for (const auto& [middle, height] : heights) EXPECT_NEAR(height, 2.0, 1e-9);
 }
 
+// Two caps on coplanar quads side by side along x (edges at xs, y from 0 to `length`),
+// sharing the edge at xs[1], each apex at heights[k] along directions[k] over its quad's
+// middle and allowed down to `lowest`; the caps' sides are the hull.
+struct TwoCaps {
+  MixedMesh mesh;
+  std::vector<interface_detail::TallCap> caps;
+  std::vector<std::array<Index, 3>> hull;
+};
+
+TwoCaps two_caps(const std::array<double, 3>& xs, double length, const std::array<Vector3, 2>& directions,
+                 const std::array<double, 2>& heights, double lowest) {
+  TwoCaps result;
+  for (double x : xs)
+    for (double y : {0.0, length}) result.mesh.points.push_back(Vector3(x, y, 0.0));
+  // Corners 0 (x0,0) 1 (x0,L) 2 (x1,0) 3 (x1,L) 4 (x2,0) 5 (x2,L); quads wound upwards.
+  const std::array<std::array<Index, 4>, 2> quads{{{0, 2, 3, 1}, {2, 4, 5, 3}}};
+  for (std::size_t k = 0; k < 2; ++k) {
+    const Vector3 middle(0.5 * (xs[k] + xs[k + 1]), 0.5 * length, 0.0);
+    const Index apex = static_cast<Index>(result.mesh.points.size());
+    result.mesh.points.push_back(middle + heights[k] * directions[k]);
+    const auto& quad = quads[k];
+    result.caps.push_back({apex,
+                           middle,
+                           Vector3::UnitZ(),
+                           directions[k],
+                           heights[k],
+                           lowest,
+                           {quad[0], quad[1], quad[2], quad[3], apex},
+                           result.hull.size()});
+    for (std::size_t corner = 0; corner < 4; ++corner)
+      result.hull.push_back({quad[corner], quad[(corner + 1) % 4], apex});
+  }
+  return result;
+}
+
 // Two caps side by side on coplanar unit quads, one come down to 0.5 (as if it had
 // crossed the hull) and the other still 2 high: the tall one comes down to stand no more
 // above its neighbour than their middles are apart (1), so to 1.5; nothing crosses.
 TEST(InterfaceSplit, NeighbouringCapsStandWithinFortyFiveDegrees) {
-  MixedMesh mesh;
-  for (double x : {0.0, 1.0, 2.0})
-    for (double y : {0.0, 1.0}) mesh.points.push_back(Vector3(x, y, 0.0));
-  // Corners 0 (0,0) 1 (0,1) 2 (1,0) 3 (1,1) 4 (2,0) 5 (2,1); quads wound upwards.
-  const std::array<std::array<Index, 4>, 2> quads{{{0, 2, 3, 1}, {2, 4, 5, 3}}};
-  std::vector<interface_detail::TallCap> caps;
-  std::vector<std::array<Index, 3>> hull;
-  for (std::size_t k = 0; k < 2; ++k) {
-    const Vector3 middle(0.5 + static_cast<double>(k), 0.5, 0.0);
-    const double height = k == 0 ? 0.5 : 2.0;
-    const Index apex = static_cast<Index>(mesh.points.size());
-    mesh.points.push_back(middle + height * Vector3::UnitZ());
-    const auto& quad = quads[k];
-    caps.push_back({apex,
-                    middle,
-                    Vector3::UnitZ(),
-                    Vector3::UnitZ(),
-                    height,
-                    0.25,
-                    {quad[0], quad[1], quad[2], quad[3], apex},
-                    hull.size()});
-    for (std::size_t corner = 0; corner < 4; ++corner)
-      hull.push_back({quad[corner], quad[(corner + 1) % 4], apex});
-  }
+  TwoCaps setup = two_caps({0.0, 1.0, 2.0}, 1.0, {Vector3::UnitZ(), Vector3::UnitZ()}, {0.5, 2.0}, 0.25);
+  MixedMesh& mesh = setup.mesh;
+  std::vector<interface_detail::TallCap>& caps = setup.caps;
+  std::vector<std::array<Index, 3>>& hull = setup.hull;
   // A flat frame round the two quads, out to 10 away, so that the footprint (the hull's
   // free edges) is too far to bound either cap.
   const Index frame = static_cast<Index>(mesh.points.size());
@@ -805,6 +820,34 @@ TEST(InterfaceSplit, CapsLeaningTowardsTheSymmetryPlaneTurnParallelToIt) {
         EXPECT_NEAR(apex.z(), 1.0 + 0.6 * (row == 0 ? 0.0 : row + 0.5) + 2.0, 1e-12) << "row " << row;
       }
   }
+}
+
+// Two caps on coplanar quads 0.01 wide and 1 long sharing a long edge (a wake's first
+// rows behind a swept trailing edge), one come down to 0.045 as if it had crossed the
+// hull, the other 0.055 high: within the 45 degrees the levelling allows (their middles
+// are 0.01 apart), but the line between the apexes then points at the shared edge, and
+// the far field's tetrahedron of that edge and the two apexes has 171.9 degrees. The
+// taller cap comes down towards its neighbour's height, to where that tetrahedron is
+// least flat (169.65 degrees at 0.0461); the lower one stays.
+TEST(InterfaceSplit, CapsOverNarrowQuadsComeDownWhereTheirValleyIsFlat) {
+  TwoCaps setup =
+      two_caps({-0.01, 0.0, 0.01}, 1.0, {Vector3::UnitZ(), Vector3::UnitZ()}, {0.045, 0.055}, 0.02);
+  MixedMesh& mesh = setup.mesh;
+  std::vector<interface_detail::TallCap>& caps = setup.caps;
+  const std::vector<std::array<Index, 3>>& hull = setup.hull;
+  auto valley = [&]() {
+    return largest_dihedral_degrees(mesh.points[2], mesh.points[3],
+                                    mesh.points[static_cast<std::size_t>(caps[0].apex)],
+                                    mesh.points[static_cast<std::size_t>(caps[1].apex)]);
+  };
+  const double before = valley();
+  ASSERT_GT(before, 171.0);
+  EXPECT_EQ(interface_detail::lower_crossing_caps(mesh, hull, caps, std::nullopt), 1u);
+  EXPECT_NEAR(caps[0].height, 0.045, 1e-12);
+  EXPECT_LT(caps[1].height, 0.05);
+  EXPECT_GE(caps[1].height, 0.045);
+  std::printf("valley %.2f -> %.2f deg, taller cap 0.055 -> %.5f\n", before, valley(), caps[1].height);
+  EXPECT_LT(valley(), 170.0);
 }
 
 // Two caps on coplanar quads 0.1 wide and 2 long sharing a long edge, their directions
