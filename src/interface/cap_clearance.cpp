@@ -22,6 +22,13 @@ namespace mixmesh::interface_detail {
 
 namespace {
 
+// Neighbouring caps whose quads' normals are within this many degrees stand on one
+// nearly flat sheet: they are aligned, and the valleys between them opened.
+constexpr double fold_degrees = 20.0;
+// A valley tetrahedron (two neighbouring caps' shared edge and apexes) flatter than this
+// is opened: the sliver pass's target.
+constexpr double valley_dihedral = 160.0;
+
 using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Triangle3 = Kernel::Triangle_3;
 using Point3 = Kernel::Point_3;
@@ -175,9 +182,7 @@ std::vector<char> separate_neighbouring_caps(MixedMesh& mesh, std::vector<TallCa
 // pair comes down, towards its neighbour's height, to the highest of eight steps at
 // which that tetrahedron's largest dihedral angle is within valley_dihedral, or where
 // none is, to the step where it is smallest. Returns the caps lowered.
-std::vector<char> open_valleys(MixedMesh& mesh, std::vector<TallCap>& caps, const CapPairs& pairs,
-                               double valley_dihedral) {
-  constexpr double fold_degrees = 20.0;
+std::vector<char> open_valleys(MixedMesh& mesh, std::vector<TallCap>& caps, const CapPairs& pairs) {
   const double least_cosine = std::cos(fold_degrees * M_PI / 180.0);
   std::vector<char> lowered(caps.size(), 0);
   auto valley = [&](const SharedEdge& pair) {
@@ -193,7 +198,8 @@ std::vector<char> open_valleys(MixedMesh& mesh, std::vector<TallCap>& caps, cons
       const double now = valley(pair);
       if (!(now > valley_dihedral)) continue;
       const bool one_taller = caps[pair.one].height > caps[pair.other].height;
-      TallCap& taller = caps[one_taller ? pair.one : pair.other];
+      const std::size_t taller_cap = one_taller ? pair.one : pair.other;
+      TallCap& taller = caps[taller_cap];
       const double low = std::max(taller.lowest, caps[one_taller ? pair.other : pair.one].height);
       const double high = taller.height;
       if (!(high > low * (1.0 + 1e-9))) continue;
@@ -205,9 +211,11 @@ std::vector<char> open_valleys(MixedMesh& mesh, std::vector<TallCap>& caps, cons
         if (angle < best_angle) best_angle = angle, best_height = height;
         if (angle <= valley_dihedral) break;
       }
-      lower_to(mesh, taller, high);
-      if (best_height < high && best_angle < now - 1e-9 && lower_to(mesh, taller, best_height)) {
-        lowered[static_cast<std::size_t>(&taller - caps.data())] = 1;
+      // Every step tried was valid, so the chosen height is too.
+      const bool opened = best_height < high && best_angle < now - 1e-9;
+      lower_to(mesh, taller, opened ? best_height : high);
+      if (opened) {
+        lowered[taller_cap] = 1;
         moved = true;
       }
     }
@@ -224,7 +232,6 @@ std::vector<char> open_valleys(MixedMesh& mesh, std::vector<TallCap>& caps, cons
 // Two passes of averaging with the neighbours within fold_degrees; a cap whose pyramid
 // would be inverted keeps its own normal.
 void align_neighbouring_caps(MixedMesh& mesh, std::vector<TallCap>& caps, const CapPairs& pairs) {
-  constexpr double fold_degrees = 20.0;
   const double least_cosine = std::cos(fold_degrees * M_PI / 180.0);
   // The fold is judged on the quads' own normals, so a chain of gentle folds does not
   // carry a cap past fold_degrees.
@@ -331,7 +338,7 @@ std::size_t lower_crossing_caps(MixedMesh& mesh, const std::vector<std::array<In
   }
   const std::vector<char> separated = separate_neighbouring_caps(mesh, caps, pairs);
   const std::vector<char> levelled = level_neighbouring_caps(mesh, caps, pairs);
-  const std::vector<char> opened = open_valleys(mesh, caps, pairs, 160.0);
+  const std::vector<char> opened = open_valleys(mesh, caps, pairs);
   for (std::size_t cap = 0; cap < caps.size(); ++cap)
     lowered[cap] = lowered[cap] || separated[cap] || levelled[cap] || opened[cap];
   return static_cast<std::size_t>(std::count(lowered.begin(), lowered.end(), 1));

@@ -453,14 +453,17 @@ class SliverRemoval {
       change.operation = Operation::point_move;
       change.before = change.after = tally();
       change.moved_point = p;
-      for (const Vector3& trial : trials) {
-        x = trial;
-        const Tally here = tally();
-        if (here.better_than(change.after)) {
-          change.after = here;
-          change.moved_to = trial;
+      auto try_each = [&]() {
+        for (const Vector3& trial : trials) {
+          x = trial;
+          const Tally here = tally();
+          if (here.better_than(change.after)) {
+            change.after = here;
+            change.moved_to = trial;
+          }
         }
-      }
+      };
+      try_each();
       // Where no such step helps, steps of a few times the point's height over the
       // opposite face: a sliver far smaller than the edges round its point (one inserted
       // in the concave corner between a wake's first cap and the wing's hull lies a
@@ -469,15 +472,10 @@ class SliverRemoval {
       // taken first, such short steps trim slivers that a later insertion would mend.
       if (!normal.isZero() && !change.after.better_than(change.before)) {
         const double height = normal.dot(start - u);
+        trials.clear();
         for (double multiple : {1.0, 2.0, 4.0, 8.0})
-          if (multiple * height < 0.05 * length) {
-            x = start + multiple * height * normal;
-            const Tally here = tally();
-            if (here.better_than(change.after)) {
-              change.after = here;
-              change.moved_to = x;
-            }
-          }
+          if (multiple * height < 0.05 * length) trials.push_back(start + multiple * height * normal);
+        try_each();
       }
       x = start;
       consider(std::move(change));  // taken only where a trial beat the start
