@@ -56,6 +56,9 @@ void validate(const FarFieldInput& input, const FarFieldOptions& options) {
   if (!(options.edge_protection >= 0.0))
     throw Error("farfield: edge_protection must not be negative, not " +
                 std::to_string(options.edge_protection));
+  if (!(options.first_layer_height > 0.0 && options.first_layer_height <= 1.0))
+    throw Error("farfield: first_layer_height must be in (0, 1], not " +
+                std::to_string(options.first_layer_height));
   if (options.sizing == FarFieldSizing::anisotropic && !(options.layer_growth > 1.0))
     throw Error("farfield: layer_growth must be above 1, not " + std::to_string(options.layer_growth));
   std::map<std::pair<Index, Index>, int> edge_use;

@@ -82,6 +82,7 @@ InterfaceOptions read_interface_options(config::Section& table) {
 //   size_gradient = 0.25
 //   radius_edge_ratio = 1.5    # TetGen -q
 //   layer_growth = 1.25, maximum_layers = 1
+//   first_layer_height = 0.7   # the first layer point's height, × its normal spacing
 //   precondition = false       # see docs/farfield.md: true can invert slivers
 //   cap_metrics = true         # nodes under the wake's caps take the caps' metric too
 //   sweep = nan                # degrees; absent: estimated from the hull
@@ -98,6 +99,7 @@ FarFieldOptions read_farfield_options(config::Section& table) {
   table.read("radius_edge_ratio", options.radius_edge_ratio, Bounds::at_least(1.0));
   table.read("layer_growth", options.layer_growth, Bounds::at_least(1.0));
   table.read("maximum_layers", options.maximum_layers, Bounds::at_least(0));
+  table.read("first_layer_height", options.first_layer_height, Bounds{0.0, 1.0, true, false});
   table.read("precondition", options.precondition);
   table.read("cap_metrics", options.cap_metrics);
   if (table.has("sweep"))

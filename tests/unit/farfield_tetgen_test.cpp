@@ -1,8 +1,10 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <map>
+#include <vector>
 
 #include "../support/farfield_hulls.hpp"
 #include "mixmesh/core/error.hpp"
@@ -229,6 +231,39 @@ TEST(FarField, AnisotropicPointsFollowTheHullMetric) {
   EXPECT_GT(isotropic.hull_lengths.upper_decile, 2.0);
   EXPECT_LT(anisotropic.hull_lengths.median, 1.3);
   EXPECT_LT(anisotropic.hull_lengths.upper_decile, 0.5 * isotropic.hull_lengths.upper_decile);
+}
+
+// The first layer point stands first_layer_height of its normal spacing over its node.
+// Lower than a whole spacing, the tetrahedra that reach a node a cell away across a
+// diagonal come within the metric range.
+TEST(FarField, LayerPointsStandAtTheirFirstHeight) {
+  const FarFieldInput input = hemisphere_hull(6, 24);
+  const double thickness = 0.2 * (0.5 * M_PI / 2 / 6);  // of hemisphere_hull's layer
+  FarFieldOptions options = small_options();
+  options.sizing = FarFieldSizing::anisotropic;
+  std::map<double, FarFieldResult> results;
+  std::map<double, double> median_height;
+  for (double height : {1.0, 0.7}) {
+    options.first_layer_height = height;
+    const FarFieldResult& result = results[height] = farfield(input, options);
+    expect_sound_farfield(input, result, true);
+    // The new points within three layer thicknesses of the hemisphere: its layer points.
+    std::vector<double> heights;
+    for (std::size_t node = input.points.size(); node < result.mesh.points.size(); ++node)
+      if (result.mesh.points[node].norm() < 0.5 + 3.0 * thickness)
+        heights.push_back(result.mesh.points[node].norm() - 0.5);
+    ASSERT_EQ(heights.size(), result.layer_points) << "first_layer_height " << height;
+    ASSERT_GT(heights.size(), 0u);
+    std::nth_element(heights.begin(), heights.begin() + heights.size() / 2, heights.end());
+    median_height[height] = heights[heights.size() / 2];
+  }
+  EXPECT_NEAR(median_height[0.7] / median_height[1.0], 0.7, 0.02);
+  EXPECT_GT(results[0.7].hull_lengths.within_range, results[1.0].hull_lengths.within_range);
+  EXPECT_LT(results[0.7].hull_lengths.upper_decile, results[1.0].hull_lengths.upper_decile);
+  for (double height : {0.0, 1.5}) {
+    options.first_layer_height = height;
+    EXPECT_THROW(farfield(input, options), Error) << height;
+  }
 }
 
 TEST(FarField, SelfIntersectingHullIsReportedWithEveryCrossing) {

@@ -80,6 +80,11 @@ struct FarFieldOptions {
   // columns add points and flat tetrahedra without changing those on the hull (ONERA M6:
   // docs/farfield.md, "How many layers").
   int maximum_layers = 1;
+  // The first point of a column stands this fraction of its normal spacing over its
+  // node. At a whole spacing its tetrahedra to the hull nodes across a cell's diagonal
+  // are √3 long in the metric; at h they are √(2 + h²), within [0.6, 1.6] with the
+  // vertical edge h for h in [0.6, 0.75] (docs/farfield.md, "First height").
+  double first_layer_height = 0.7;
   double minimum_metric_distance = 0.6;  // inserted points closer than this (metric) are dropped
   // Layer points lower than edge_protection × (L²/(8τ) − τ/2) over the hull (L the
   // longest hull edge at the node, τ the body's thickness below it) are dropped: they
