@@ -199,9 +199,7 @@ LayerPoints layer_points(const FarFieldInput& input, const std::vector<std::arra
     double distance = 0.0;
     for (int layer = 0; layer < options.maximum_layers && spacing < isotropic;
          ++layer, spacing *= options.layer_growth) {
-      // The first point stands lower than a whole spacing: its tetrahedra reach the
-      // hull nodes a cell away across a quad's diagonal, √(2 + h²) long in the metric,
-      // which stays within 1.6 only for h ≤ 0.75 (docs/farfield.md, "First height").
+      // The first point stands lower than a whole spacing (FarFieldOptions::first_layer_height).
       distance += (layer == 0 ? options.first_layer_height : 1.0) * spacing;
       if (distance < protected_height) continue;
       Vector3 point = at(nodes[position]) + distance * direction;
