@@ -90,7 +90,12 @@ class SliverRemoval {
       flip_a_face(t);
       split_an_edge(t);
       collapse_a_point(t);
-      if (options_.smooth_points) move_a_point(t);
+      if (options_.smooth_points) move_a_point(t, false);
+      // Moving an apex costs its pyramids shape: only where nothing else helps a
+      // tetrahedron flatter than options_.apex_dihedral_degrees.
+      if (!best_ && options_.smooth_points && options_.move_apexes &&
+          now < 180.0 - options_.apex_dihedral_degrees)
+        move_a_point(t, true);
       // A failed insertion is not tried again on a tetrahedron nearer the target: its
       // neighbours seldom change enough to let it in. One flatter than halfway from the
       // target to 180 degrees is tried in every pass: round it the neighbours' slivers
@@ -407,34 +412,61 @@ class SliverRemoval {
     return common == apexes_.size();
   }
 
+  // The scaled corner Jacobian of a pyramid of the mesh, or -1 where it is invalid or
+  // fails checkMesh's face-pyramid test.
+  double pyramid_quality(std::size_t pyramid) const {
+    const Index* corners = complex_.mesh().cell(CellType::pyramid, pyramid);
+    const CellShape shape = cell_shape(CellType::pyramid, complex_.points(), corners);
+    if (!shape.valid() || inverted_face_pyramids(CellType::pyramid, complex_.points(), corners) > 0) return -1.0;
+    return shape.min_corner_jacobian;
+  }
+
   // Point move: a free point of t to the best of a few trial positions, towards the
   // mean of its neighbours and along the normal of the opposite face (a sliver's fourth
   // point lies almost in the plane of the other three). A point on a flat boundary (the
-  // symmetry plane) moves within its plane, so its boundary triangles stay in it.
-  void move_a_point(int t) {
+  // symmetry plane) moves within its plane, so its boundary triangles stay in it. With
+  // `apexes`, the points of t that are apexes of pyramids move instead (search_apex),
+  // their pyramids kept valid and no flatter than options_.apex_pyramid_quality.
+  void move_a_point(int t, bool apexes) {
     const Tetrahedron nodes = complex_.nodes(t);
     for (int k = 0; k < 4; ++k) {
       const Index p = nodes[static_cast<std::size_t>(k)];
       const Vector3& plane = complex_.plane_normal(p);
-      if (!complex_.free_point(p) && plane.isZero()) continue;
+      const std::vector<std::size_t>* pyramids = apexes ? complex_.apex_pyramids(p) : nullptr;
+      if (apexes ? !pyramids : !complex_.free_point(p) && plane.isZero()) continue;
       const std::vector<int>& cells = complex_.around(p);
       Vector3& x = complex_.points()[static_cast<std::size_t>(p)];
       const Vector3 start = x;
+      // An apex's pyramids bound where it may go: each no flatter than the bound, or
+      // than itself where it starts flatter.
+      std::vector<double> pyramid_floors;
+      if (pyramids)
+        for (std::size_t pyramid : *pyramids)
+          pyramid_floors.push_back(std::min(options_.apex_pyramid_quality, pyramid_quality(pyramid)));
       auto tally = [&]() {
         Tally result;
         for (int cell : cells) result.add(quality(complex_, cell), target());
+        if (pyramids)
+          for (std::size_t number = 0; number < pyramids->size(); ++number)
+            if (!(pyramid_quality((*pyramids)[number]) >= pyramid_floors[number])) result.add(invalid, target());
         return result;
       };
       Vector3 mean = Vector3::Zero();
       double length = 0.0;
       int count = 0;
+      auto add_neighbour = [&](Index node) {
+        mean += point(node);
+        length += (point(node) - start).norm();
+        ++count;
+      };
       for (int cell : cells)
         for (Index node : complex_.nodes(cell))
-          if (node != p) {
-            mean += point(node);
-            length += (point(node) - start).norm();
-            ++count;
-          }
+          if (node != p) add_neighbour(node);
+      if (pyramids)
+        for (std::size_t pyramid : *pyramids) {
+          const Index* corners = complex_.mesh().cell(CellType::pyramid, pyramid);
+          std::for_each(corners, corners + 4, add_neighbour);
+        }
       mean /= count;
       length /= count;
       const Vector3& u = point(nodes[static_cast<std::size_t>((k + 1) % 4)]);
@@ -477,9 +509,52 @@ class SliverRemoval {
           if (multiple * height < 0.05 * length) trials.push_back(start + multiple * height * normal);
         try_each();
       }
+      if (pyramids) {
+        search_apex(t, p, x, start, change, tally, length);
+        // An apex has many tetrahedra round it (a cap's, a hundred): one that the move
+        // mends must not cost the others more than it gains, or slivers spread.
+        if (change.after.shortfall > change.before.shortfall) change.after = change.before;
+      }
       x = start;
       consider(std::move(change));  // taken only where a trial beat the start
     }
+  }
+
+  // An apex is held by its pyramids on every side, and a pyramid on a twisted base
+  // leaves it a thin slab of valid positions (a split point of a cell at a tip's trailing
+  // edge, 4 mm wide at one end and 35 mm at the other, had one a few tenths of a
+  // millimetre thick), which fixed steps along a few directions seldom lie in. So the
+  // apex goes part of the way towards each other node of the sliver `t` and its
+  // centroid, the best of each line kept, then from the best position so far by steps
+  // along the axes, halving from a twentieth of the mean edge. `x` is the point's
+  // coordinates, which `tally` reads.
+  template <typename Tallies>
+  void search_apex(int t, Index p, Vector3& x, const Vector3& start, Change& change, const Tallies& tally,
+                   double length) {
+    auto improves = [&](const Vector3& trial) {
+      x = trial;
+      const Tally result = tally();
+      if (!result.better_than(change.after)) return false;
+      change.after = result;
+      change.moved_to = trial;
+      return true;
+    };
+    std::vector<Vector3> targets;
+    Vector3 centroid = Vector3::Zero();
+    for (Index node : complex_.nodes(t)) {
+      centroid += 0.25 * point(node);
+      if (node != p) targets.push_back(point(node));
+    }
+    targets.push_back(centroid);
+    for (const Vector3& target : targets)
+      for (double part : {0.75, 0.5, 0.25, 0.125, 0.0625})
+        if (improves(start + part * (target - start))) break;
+    Vector3 here = change.after.better_than(change.before) ? change.moved_to : start;
+    const Vector3 directions[6] = {Vector3::UnitX(),  -Vector3::UnitX(), Vector3::UnitY(),
+                                   -Vector3::UnitY(), Vector3::UnitZ(),  -Vector3::UnitZ()};
+    for (double step = 0.05 * length; step > 2e-3 * length; step *= 0.5)
+      for (const Vector3& direction : directions)
+        if (improves(here + step * direction)) here = change.moved_to;
   }
 
   // Point insertion: a sliver whose four points lie on faces the pass cannot cross (two
@@ -644,6 +719,12 @@ SliverReport remove_slivers(MixedMesh& mesh, const SliverOptions& options) {
     throw Error("slivers: the target dihedral angle must lie in (90, 180) degrees, got " +
                 std::to_string(options.target_dihedral_degrees));
   if (options.maximum_ring < 3) throw Error("slivers: the largest edge ring must be at least 3");
+  if (!(options.apex_dihedral_degrees > 90.0 && options.apex_dihedral_degrees < 180.0))
+    throw Error("slivers: the apexes' dihedral angle must lie in (90, 180) degrees, got " +
+                std::to_string(options.apex_dihedral_degrees));
+  if (!(options.apex_pyramid_quality > 0.0 && options.apex_pyramid_quality <= 1.0))
+    throw Error("slivers: the apexes' pyramid quality is a scaled Jacobian in (0, 1], got " +
+                std::to_string(options.apex_pyramid_quality));
   SliverReport report;
   SliverRemoval removal(mesh, options);
   measure(removal.complex(), options.target_dihedral_degrees, report.largest_dihedral_before,

@@ -36,6 +36,7 @@ TetrahedronComplex::TetrahedronComplex(MixedMesh& mesh) : mesh_(mesh) {
   for (FaceType type : all_face_types)
     for (Index node : mesh.faces(type).nodes) free_[static_cast<std::size_t>(node)] = 0;
   find_planar_points();
+  find_apex_points();
   faces_.reserve(2 * count + 16);
   bool oriented = false;
   for (std::size_t t = 0; t < count; ++t) {
@@ -85,6 +86,28 @@ void TetrahedronComplex::find_planar_points() {
   }
   for (std::size_t point = 0; point < planar.size(); ++point)
     if (!planar[point] || free_[point]) plane_normal_[point] = Vector3::Zero();
+}
+
+void TetrahedronComplex::find_apex_points() {
+  std::vector<char> other_use(mesh_.points.size(), 0);
+  for (CellType type : {CellType::prism, CellType::hexahedron})
+    for (Index node : mesh_.block(type).nodes) other_use[static_cast<std::size_t>(node)] = 1;
+  for (FaceType type : all_face_types)
+    for (Index node : mesh_.faces(type).nodes) other_use[static_cast<std::size_t>(node)] = 1;
+  const std::size_t pyramids = mesh_.cell_count(CellType::pyramid);
+  for (std::size_t pyramid = 0; pyramid < pyramids; ++pyramid) {
+    const Index* nodes = mesh_.cell(CellType::pyramid, pyramid);
+    for (int corner = 0; corner < 4; ++corner) other_use[static_cast<std::size_t>(nodes[corner])] = 1;
+  }
+  for (std::size_t pyramid = 0; pyramid < pyramids; ++pyramid) {
+    const Index apex = mesh_.cell(CellType::pyramid, pyramid)[4];
+    if (!other_use[static_cast<std::size_t>(apex)]) apex_pyramids_[apex].push_back(pyramid);
+  }
+}
+
+const std::vector<std::size_t>* TetrahedronComplex::apex_pyramids(Index p) const {
+  const auto found = apex_pyramids_.find(p);
+  return found == apex_pyramids_.end() ? nullptr : &found->second;
 }
 
 Index TetrahedronComplex::add_point(const Vector3& point) {

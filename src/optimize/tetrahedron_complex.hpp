@@ -44,6 +44,11 @@ class TetrahedronComplex {
   // (a symmetry plane, a flat side of the far field): that plane's unit normal, along
   // which the point must not move; zero for every other point.
   const Vector3& plane_normal(Index p) const { return plane_normal_[static_cast<std::size_t>(p)]; }
+  // For a point that is the apex of pyramids and is used otherwise by tetrahedra only,
+  // on no boundary face (the split point of an interface cell, the apex of a cap): those
+  // pyramids, as indices into the mesh's pyramid block; null for every other point.
+  const std::vector<std::size_t>* apex_pyramids(Index p) const;
+  const MixedMesh& mesh() const { return mesh_; }
 
   // The tetrahedron across face (a, b, c) from t, or -1.
   int neighbour(int t, Index a, Index b, Index c) const;
@@ -84,6 +89,7 @@ class TetrahedronComplex {
   };
   static FaceKey key(Index a, Index b, Index c);
   void find_planar_points();
+  void find_apex_points();
 
   MixedMesh& mesh_;
   std::vector<Tetrahedron> tetrahedra_;
@@ -92,6 +98,7 @@ class TetrahedronComplex {
   std::vector<std::vector<int>> around_;
   std::vector<char> free_;
   std::vector<Vector3> plane_normal_;
+  std::unordered_map<Index, std::vector<std::size_t>> apex_pyramids_;
   std::unordered_map<FaceKey, std::array<int, 2>, FaceHash> faces_;
   double orientation_ = 1.0;
 };

@@ -1,6 +1,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <fstream>
 #include <random>
 #include <string>
@@ -338,6 +340,78 @@ TEST(SliverRemoval, PointsInACornerUnderLongEdgesMoveAtTheirOwnScale) {
   EXPECT_LT(result.after, 175.0);
 }
 
+// The outermost layer cell of a random wing (seed 71, wing 64) at its flat tip's trailing
+// edge, split about its centre: its outer quad narrows from 47 mm to 4 mm over 230 mm
+// and twists, and the tetrahedron on the quad's narrow half is a sliver that no flip
+// can reach (its faces are pyramids' and the quad's). Metres, about the split point.
+MixedMesh twisted_tip_cell() {
+  MixedMesh mesh;
+  const Vector3 centre(4.5563713140527415, 23.390266184156925, 1.54811020978844);
+  for (const Vector3& point :
+       {Vector3(4.553659031813586, 23.2720066569659, 1.569957053363615),
+        Vector3(4.557819246182786, 23.26986101979523, 1.5692178880869498),
+        Vector3(4.553050507652694, 23.475145652805434, 1.505619448899794),
+        Vector3(4.547454578544482, 23.494704357746617, 1.4748800896865961),
+        Vector3(4.562406306101147, 23.28421581138744, 1.614911951649289),
+        Vector3(4.563876641261688, 23.28068146666267, 1.6149644402354248),
+        Vector3(4.559757578062668, 23.509919035301596, 1.5371210078345108),
+        Vector3(4.552946622802878, 23.535595472590508, 1.4982097985513398), centre})
+    mesh.points.push_back(point - centre);
+  // Nodes 0-3 the inner quad, 4-7 the outer one above them, 8 the split point.
+  for (const std::array<Index, 5>& pyramid : std::vector<std::array<Index, 5>>{
+           {0, 1, 2, 3, 8}, {0, 4, 5, 1, 8}, {1, 5, 6, 2, 8}, {2, 6, 7, 3, 8}, {3, 7, 4, 0, 8}})
+    mesh.add_cell(CellType::pyramid, pyramid.data());
+  for (const std::array<Index, 4>& tetrahedron :
+       std::vector<std::array<Index, 4>>{{4, 6, 5, 8}, {4, 7, 6, 8}})
+    mesh.add_cell(CellType::tetrahedron, tetrahedron.data());
+  const int wall = mesh.marker("wall");
+  for (const CellFace& face : match_faces(mesh).boundary) {
+    Index nodes[4];
+    const int count = face_nodes(mesh, face, nodes);
+    mesh.add_face(count == 3 ? FaceType::triangle : FaceType::quad, nodes, wall);
+  }
+  return mesh;
+}
+
+double smallest_pyramid_corner(const MixedMesh& mesh) {
+  double smallest = 1.0;
+  for (std::size_t pyramid = 0; pyramid < mesh.cell_count(CellType::pyramid); ++pyramid) {
+    const CellShape shape = cell_shape(CellType::pyramid, mesh.points, mesh.cell(CellType::pyramid, pyramid));
+    smallest = std::min(smallest, shape.valid() ? shape.min_corner_jacobian : -1.0);
+  }
+  return smallest;
+}
+
+TEST(SliverRemoval, ASplitPointMovesWithinItsPyramidsWhereNothingElseMendsASliver) {
+  MixedMesh fixed = twisted_tip_cell();
+  std::size_t above = 0;
+  const double before = largest_dihedral(fixed, above);
+  ASSERT_GT(before, 177.0);
+  const double pyramids_before = smallest_pyramid_corner(fixed);
+  ASSERT_GT(pyramids_before, 2e-3 / std::sqrt(2.0));
+  SliverOptions options;
+  options.move_apexes = false;
+  remove_slivers(fixed, options);
+  EXPECT_NEAR(largest_dihedral(fixed, above), before, 1e-9);
+
+  MixedMesh mesh = twisted_tip_cell();
+  const SliverReport report = remove_slivers(mesh, SliverOptions{});
+  const double after = largest_dihedral(mesh, above);
+  const double pyramids_after = smallest_pyramid_corner(mesh);
+  std::printf("largest dihedral %.2f -> %.2f deg, smallest pyramid corner %.2e -> %.2e\n", before, after,
+              pyramids_before, pyramids_after);
+  EXPECT_GE(report.smoothed_points, 1u);
+  EXPECT_LT(after, 170.0);
+  // The pyramids stay valid and no flatter than the bound (twice the robustness floor).
+  EXPECT_GE(pyramids_after, SliverOptions{}.apex_pyramid_quality);
+  for (std::size_t pyramid = 0; pyramid < mesh.cell_count(CellType::pyramid); ++pyramid)
+    EXPECT_EQ(inverted_face_pyramids(CellType::pyramid, mesh.points, mesh.cell(CellType::pyramid, pyramid)), 0);
+  // Only the split point moved; the cell's faces are where they were.
+  const MixedMesh original = twisted_tip_cell();
+  for (std::size_t point = 0; point < 8; ++point) EXPECT_EQ(mesh.points[point], original.points[point]);
+  EXPECT_TRUE(match_faces(mesh).conforming());
+}
+
 TEST(SliverRemoval, BadOptionsAreRejected) {
   MixedMesh mesh = cube_block(1);
   SliverOptions options;
@@ -345,6 +419,12 @@ TEST(SliverRemoval, BadOptionsAreRejected) {
   EXPECT_THROW(remove_slivers(mesh, options), Error);
   options = SliverOptions{};
   options.maximum_ring = 2;
+  EXPECT_THROW(remove_slivers(mesh, options), Error);
+  options = SliverOptions{};
+  options.apex_dihedral_degrees = 60.0;
+  EXPECT_THROW(remove_slivers(mesh, options), Error);
+  options = SliverOptions{};
+  options.apex_pyramid_quality = 0.0;
   EXPECT_THROW(remove_slivers(mesh, options), Error);
 }
 
