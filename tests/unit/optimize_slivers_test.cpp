@@ -15,6 +15,16 @@
 namespace mixmesh {
 namespace {
 
+// Tags every boundary face of the cells "wall".
+void tag_boundary_walls(MixedMesh& mesh) {
+  const int wall = mesh.marker("wall");
+  for (const CellFace& face : match_faces(mesh).boundary) {
+    Index nodes[4];
+    const int count = face_nodes(mesh, face, nodes);
+    mesh.add_face(count == 3 ? FaceType::triangle : FaceType::quad, nodes, wall);
+  }
+}
+
 // A block of n^3 unit cubes, each cut into six tetrahedra round its main diagonal,
 // every boundary face tagged "wall".
 MixedMesh cube_block(int n) {
@@ -41,13 +51,7 @@ MixedMesh cube_block(int n) {
           mesh.add_cell(CellType::tetrahedron, t);
         }
       }
-  // Boundary faces: faces of one tetrahedron.
-  const int wall = mesh.marker("wall");
-  for (const CellFace& face : match_faces(mesh).boundary) {
-    Index nodes[4];
-    const int count = face_nodes(mesh, face, nodes);
-    mesh.add_face(count == 3 ? FaceType::triangle : FaceType::quad, nodes, wall);
-  }
+  tag_boundary_walls(mesh);
   return mesh;
 }
 
@@ -364,12 +368,7 @@ MixedMesh twisted_tip_cell() {
   for (const std::array<Index, 4>& tetrahedron :
        std::vector<std::array<Index, 4>>{{4, 6, 5, 8}, {4, 7, 6, 8}})
     mesh.add_cell(CellType::tetrahedron, tetrahedron.data());
-  const int wall = mesh.marker("wall");
-  for (const CellFace& face : match_faces(mesh).boundary) {
-    Index nodes[4];
-    const int count = face_nodes(mesh, face, nodes);
-    mesh.add_face(count == 3 ? FaceType::triangle : FaceType::quad, nodes, wall);
-  }
+  tag_boundary_walls(mesh);
   return mesh;
 }
 
