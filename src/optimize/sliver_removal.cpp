@@ -91,11 +91,6 @@ class SliverRemoval {
       split_an_edge(t);
       collapse_a_point(t);
       if (options_.smooth_points) move_a_point(t, false);
-      // Moving an apex costs its pyramids shape: only where nothing else helps a
-      // tetrahedron flatter than options_.apex_dihedral_degrees.
-      if (!best_ && options_.smooth_points && options_.move_apexes &&
-          now < 180.0 - options_.apex_dihedral_degrees)
-        move_a_point(t, true);
       // A failed insertion is not tried again on a tetrahedron nearer the target: its
       // neighbours seldom change enough to let it in. One flatter than halfway from the
       // target to 180 degrees is tried in every pass: round it the neighbours' slivers
@@ -104,6 +99,13 @@ class SliverRemoval {
         insert_a_point(t);
         if (!best_) insertion_failed_[static_cast<std::size_t>(t)] = 1;
       }
+      // The searched move costs a hundred trials and moving an apex costs its pyramids
+      // shape: only where nothing else, the insertion included, helps a tetrahedron
+      // above options_.search_dihedral_degrees. (Taken before the insertion it trims
+      // slivers a new point would mend: 176.9 degrees instead of 173.8 on the patch of
+      // *A point in a corner under long edges*, docs/generate.md.)
+      if (!best_ && options_.search_points && now < 180.0 - options_.search_dihedral_degrees)
+        move_a_point(t, true);
       if (!best_) continue;
       apply(*best_, report);
       ++done;
@@ -424,16 +426,17 @@ class SliverRemoval {
   // Point move: a free point of t to the best of a few trial positions, towards the
   // mean of its neighbours and along the normal of the opposite face (a sliver's fourth
   // point lies almost in the plane of the other three). A point on a flat boundary (the
-  // symmetry plane) moves within its plane, so its boundary triangles stay in it. With
-  // `apexes`, the points of t that are apexes of pyramids move instead (search_apex),
-  // their pyramids kept valid and no flatter than options_.apex_pyramid_quality.
-  void move_a_point(int t, bool apexes) {
+  // symmetry plane) moves within its plane, so its boundary triangles stay in it. A
+  // `searched` move (search_point) is the fallback for a sliver nothing else mends; it
+  // also moves the points of t that are apexes of pyramids, which are kept valid and no
+  // flatter than options_.apex_pyramid_quality.
+  void move_a_point(int t, bool searched) {
     const Tetrahedron nodes = complex_.nodes(t);
     for (int k = 0; k < 4; ++k) {
       const Index p = nodes[static_cast<std::size_t>(k)];
       const Vector3& plane = complex_.plane_normal(p);
-      const std::vector<std::size_t>* pyramids = apexes ? complex_.apex_pyramids(p) : nullptr;
-      if (apexes ? !pyramids : !complex_.free_point(p) && plane.isZero()) continue;
+      const std::vector<std::size_t>* pyramids = searched ? complex_.apex_pyramids(p) : nullptr;
+      if (!complex_.free_point(p) && plane.isZero() && !pyramids) continue;
       const std::vector<int>& cells = complex_.around(p);
       Vector3& x = complex_.points()[static_cast<std::size_t>(p)];
       const Vector3 start = x;
@@ -469,69 +472,81 @@ class SliverRemoval {
         }
       mean /= count;
       length /= count;
-      const Vector3& u = point(nodes[static_cast<std::size_t>((k + 1) % 4)]);
-      const Vector3& v = point(nodes[static_cast<std::size_t>((k + 2) % 4)]);
-      const Vector3& w = point(nodes[static_cast<std::size_t>((k + 3) % 4)]);
-      Vector3 normal = (v - u).cross(w - u);
-      normal -= plane.dot(normal) * plane;
-      normal = normal.norm() > 1e-12 * (v - u).squaredNorm() ? Vector3(normal.normalized()) : Vector3::Zero();
-      if (normal.dot(start - u) < 0.0) normal = -normal;
-      const Vector3 towards_mean = mean - start - plane.dot(mean - start) * plane;
-      std::vector<Vector3> trials;
-      for (double f : {1.0, 0.5, 0.25}) trials.push_back(start + f * towards_mean);
-      if (!normal.isZero())
-        for (double f : {0.05, 0.1, 0.2, 0.4}) trials.push_back(start + f * length * normal);
       Change change;
       change.operation = Operation::point_move;
       change.before = change.after = tally();
       change.moved_point = p;
-      auto try_each = [&]() {
-        for (const Vector3& trial : trials) {
-          x = trial;
-          const Tally here = tally();
-          if (here.better_than(change.after)) {
-            change.after = here;
-            change.moved_to = trial;
-          }
-        }
-      };
-      try_each();
-      // Where no such step helps, steps of a few times the point's height over the
-      // opposite face: a sliver far smaller than the edges round its point (one inserted
-      // in the concave corner between a wake's first cap and the wing's hull lies a
-      // millimetre off the cap's face, under edges tens of millimetres long, with the
-      // hull half a millimetre away) needs a step at its own scale. Only as a fallback:
-      // taken first, such short steps trim slivers that a later insertion would mend.
-      if (!normal.isZero() && !change.after.better_than(change.before)) {
-        const double height = normal.dot(start - u);
-        trials.clear();
-        for (double multiple : {1.0, 2.0, 4.0, 8.0})
-          if (multiple * height < 0.05 * length) trials.push_back(start + multiple * height * normal);
-        try_each();
-      }
-      if (pyramids) {
-        search_apex(t, p, x, start, change, tally, length);
-        // An apex has many tetrahedra round it (a cap's, a hundred): one that the move
-        // mends must not cost the others more than it gains, or slivers spread.
+      if (searched) {
+        search_point(t, p, plane, x, start, change, tally, length);
+        // A point has tens of tetrahedra round it (a cap's apex a hundred): one that
+        // the move mends must not cost the others more than it gains, or slivers spread.
         if (change.after.shortfall > change.before.shortfall) change.after = change.before;
+      } else {
+        try_ordinary_moves(nodes, k, plane, x, start, mean, length, change, tally);
       }
       x = start;
       consider(std::move(change));  // taken only where a trial beat the start
     }
   }
 
-  // An apex is held by its pyramids on every side, and a pyramid on a twisted base
-  // leaves it a thin slab of valid positions (a split point of a cell at a tip's trailing
-  // edge, 4 mm wide at one end and 35 mm at the other, had one a few tenths of a
-  // millimetre thick), which fixed steps along a few directions seldom lie in. So the
-  // apex goes part of the way towards each other node of the sliver `t` and its
-  // centroid, the best of each line kept, then from the best position so far by steps
-  // along the axes, halving from a twentieth of the mean edge. `x` is the point's
+  // The ordinary trials of point k of `nodes`: towards the mean of its neighbours, off
+  // the opposite face by parts of its edges' mean `length`, and at its own scale.
+  template <typename Tallies>
+  void try_ordinary_moves(const Tetrahedron& nodes, int k, const Vector3& plane, Vector3& x, const Vector3& start,
+                          const Vector3& mean, double length, Change& change, const Tallies& tally) {
+    const Vector3& u = point(nodes[static_cast<std::size_t>((k + 1) % 4)]);
+    const Vector3& v = point(nodes[static_cast<std::size_t>((k + 2) % 4)]);
+    const Vector3& w = point(nodes[static_cast<std::size_t>((k + 3) % 4)]);
+    Vector3 normal = (v - u).cross(w - u);
+    normal -= plane.dot(normal) * plane;
+    normal = normal.norm() > 1e-12 * (v - u).squaredNorm() ? Vector3(normal.normalized()) : Vector3::Zero();
+    if (normal.dot(start - u) < 0.0) normal = -normal;
+    const Vector3 towards_mean = mean - start - plane.dot(mean - start) * plane;
+    std::vector<Vector3> trials;
+    for (double f : {1.0, 0.5, 0.25}) trials.push_back(start + f * towards_mean);
+    if (!normal.isZero())
+      for (double f : {0.05, 0.1, 0.2, 0.4}) trials.push_back(start + f * length * normal);
+    auto try_each = [&]() {
+      for (const Vector3& trial : trials) {
+        x = trial;
+        const Tally here = tally();
+        if (here.better_than(change.after)) {
+          change.after = here;
+          change.moved_to = trial;
+        }
+      }
+    };
+    try_each();
+    // Where no such step helps, steps of a few times the point's height over the
+    // opposite face: a sliver far smaller than the edges round its point (one inserted
+    // in the concave corner between a wake's first cap and the wing's hull lies a
+    // millimetre off the cap's face, under edges tens of millimetres long, with the
+    // hull half a millimetre away) needs a step at its own scale. Only as a fallback:
+    // taken first, such short steps trim slivers that a later insertion would mend.
+    if (!normal.isZero() && !change.after.better_than(change.before)) {
+      const double height = normal.dot(start - u);
+      trials.clear();
+      for (double multiple : {1.0, 2.0, 4.0, 8.0})
+        if (multiple * height < 0.05 * length) trials.push_back(start + multiple * height * normal);
+      try_each();
+    }
+  }
+
+  // Where the ordinary trials fail, the valid positions round a point are often a thin
+  // slab: round an apex, a pyramid on a twisted base leaves one a few tenths of a
+  // millimetre thick (the split point of a cell at a tip's trailing edge, 4 mm wide at
+  // one end and 35 mm at the other), and round a far-field point in a cluster of slivers
+  // over needle hull faces its neighbours do. Fixed steps along a few directions seldom
+  // lie in it. So the point goes part of the way towards each other point of the sliver
+  // `t` and its centroid (the first part that helps on each line), then from the best
+  // position so far by steps along the axes, halving from a twentieth of its edges' mean
+  // `length`; a point on a flat boundary stays in its plane. `x` is the point's
   // coordinates, which `tally` reads.
   template <typename Tallies>
-  void search_apex(int t, Index p, Vector3& x, const Vector3& start, Change& change, const Tallies& tally,
-                   double length) {
-    auto improves = [&](const Vector3& trial) {
+  void search_point(int t, Index p, const Vector3& plane, Vector3& x, const Vector3& start, Change& change,
+                    const Tallies& tally, double length) {
+    auto improves = [&](Vector3 trial) {
+      trial -= plane.dot(trial - start) * plane;
       x = trial;
       const Tally result = tally();
       if (!result.better_than(change.after)) return false;
@@ -719,9 +734,9 @@ SliverReport remove_slivers(MixedMesh& mesh, const SliverOptions& options) {
     throw Error("slivers: the target dihedral angle must lie in (90, 180) degrees, got " +
                 std::to_string(options.target_dihedral_degrees));
   if (options.maximum_ring < 3) throw Error("slivers: the largest edge ring must be at least 3");
-  if (!(options.apex_dihedral_degrees > 90.0 && options.apex_dihedral_degrees < 180.0))
-    throw Error("slivers: the apexes' dihedral angle must lie in (90, 180) degrees, got " +
-                std::to_string(options.apex_dihedral_degrees));
+  if (!(options.search_dihedral_degrees > 90.0 && options.search_dihedral_degrees < 180.0))
+    throw Error("slivers: the searched moves' dihedral angle must lie in (90, 180) degrees, got " +
+                std::to_string(options.search_dihedral_degrees));
   if (!(options.apex_pyramid_quality > 0.0 && options.apex_pyramid_quality <= 1.0))
     throw Error("slivers: the apexes' pyramid quality is a scaled Jacobian in (0, 1], got " +
                 std::to_string(options.apex_pyramid_quality));

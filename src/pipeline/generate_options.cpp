@@ -116,7 +116,7 @@ FarFieldOptions read_farfield_options(config::Section& table) {
 //   passes = 12                # 0: no sliver removal
 //   maximum_ring = 7
 //   smooth_points = true
-//   move_apexes = true         # split points and cap apexes, for tetrahedra above 170 degrees
+//   search_points = true       # search free points, split points and cap apexes, for tetrahedra above 170 degrees nothing else mends
 //   insert_points = true
 SliverOptions read_sliver_options(config::Section& table) {
   SliverOptions options;
@@ -124,7 +124,7 @@ SliverOptions read_sliver_options(config::Section& table) {
   table.read("passes", options.passes, Bounds::at_least(0));
   table.read("maximum_ring", options.maximum_ring, Bounds::at_least(3));
   table.read("smooth_points", options.smooth_points);
-  table.read("move_apexes", options.move_apexes);
+  table.read("search_points", options.search_points);
   table.read("insert_points", options.insert_points);
   table.finish();
   return options;
