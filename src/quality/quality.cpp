@@ -13,6 +13,7 @@
 #include "mixmesh/core/log.hpp"
 #include "mixmesh/mesh/cell_geometry.hpp"
 #include "mixmesh/quality/cell_quality.hpp"
+#include "hull_metric_quality.hpp"
 #include "validity_parts.hpp"
 
 namespace mixmesh {
@@ -225,6 +226,11 @@ QualityReport measure_volume_quality(const MixedMesh& mesh, const FaceConnectivi
   });
   if (!boundary.empty()) pending.push_back({"non_orthogonality", "boundary faces", std::move(boundary)});
   measure_growth(mesh, faces, pending);
+  quality_detail::HullMetricValues hull = quality_detail::hull_metric_values(mesh, faces);
+  if (!hull.shapes.empty()) {
+    pending.push_back({"metric_edge_length", "hull tetrahedra", std::move(hull.edge_lengths)});
+    pending.push_back({"metric_shape", "hull tetrahedra", std::move(hull.shapes)});
+  }
   return finish(pending, options);
 }
 

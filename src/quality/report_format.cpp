@@ -71,13 +71,13 @@ std::string format_table(const MixedMesh& mesh, const CheckReport& report, const
   }
 
   if (!report.quality.entries.empty()) {
-    out << "\nquality" << std::string(29, ' ') << std::setw(9) << "count";
+    out << "\nquality" << std::string(30, ' ') << std::setw(9) << "count";
     for (const char* heading : {"min", "p1", "p5", "median", "p95", "p99", "max", "mean"})
       out << std::setw(11) << heading;
     out << "\n";
     for (const QualityEntry& entry : report.quality.entries) {
       const Statistics& statistics = entry.statistics;
-      out << "  " << std::left << std::setw(18) << entry.metric << std::setw(16) << entry.entity << std::right
+      out << "  " << std::left << std::setw(19) << entry.metric << std::setw(16) << entry.entity << std::right
           << std::setw(9) << statistics.count;
       for (double value :
            {statistics.min, statistics.percentiles[0], statistics.percentiles[1], statistics.percentiles[2],

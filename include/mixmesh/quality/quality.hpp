@@ -10,6 +10,13 @@
 //       height of a cell / height of the cell below it, where the top face of the
 //       lower cell (prism face 3-5-4, hex face 4-5-6-7) is the bottom face of the
 //       upper one; reported under the type of the upper cell
+//   metric_edge_length, metric_shape          "hull tetrahedra": every far-field
+//       tetrahedron sharing a triangle with a cell the far field was matched to (a
+//       tetrahedron on an interface split point, a cap's pyramid, a prism), in that
+//       cell's metric (Wild eq. 11-12): its six edge lengths (1 in a unit mesh) and its
+//       mean ratio 12 (3V)^(2/3) / sum of squared edges (1 for the regular tetrahedron),
+//       once per such triangle. A stretched tetrahedron that follows the cell beneath it
+//       measures as regular, where the scaled Jacobian calls it bad.
 // Planar meshes give the same entries for triangles and quads ("interior edges",
 // "boundary edges" for the non-orthogonality). Non-finite values (NaN coordinates,
 // zero-length edges) are counted apart and left out of the statistics.
