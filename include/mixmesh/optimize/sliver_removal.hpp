@@ -24,17 +24,17 @@
 //     edges' mean length, or, where none of those helps, by a few times its height over
 //     that face); on a flat boundary (all its boundary faces triangles in one plane) it
 //     moves within that plane;
-//   - a searched point move, for a tetrahedron above `search_dihedral_degrees` that
-//     none of the above mends: lines towards the sliver's other points, then axis steps,
-//     for its free points and for those that are the apex of pyramids and otherwise
-//     used by tetrahedra only (an interface cell's split point, a cap's apex), while
-//     every such pyramid stays valid and no flatter than `apex_pyramid_quality`;
 //   - point insertion, for a sliver none of the above mends: a new point at its
 //     circumcentre or over one of its faces, coned over a cavity grown until it is
 //     star-shaped from the point: the tetrahedra whose circumsphere holds it, or, where
 //     no trial point's such cavity helps, only the sliver and the tetrahedron holding
 //     the point. A failed insertion is tried again in later passes on a tetrahedron
 //     flatter than halfway from the target to 180 degrees.
+//   - a searched point move, last, for a sliver none of the above mends: lines towards
+//     the sliver's other points, then axis steps, for its free points and, above
+//     `apex_dihedral_degrees`, for those that are the apex of pyramids and otherwise
+//     used by tetrahedra only (an interface cell's split point, a cap's apex), while
+//     every such pyramid stays valid and no flatter than `apex_pyramid_quality`;
 // Faces shared with a pyramid, prism or hexahedron and boundary faces are never
 // removed, no point of them moves off its plane, so the mesh stays conforming with every face
 // and marker it had.
@@ -53,17 +53,17 @@ struct SliverOptions {
   int passes = 12;
   int maximum_ring = 7;  // the largest edge ring removed (tetrahedra round the edge)
   bool smooth_points = true;
-  // Where nothing else mends a tetrahedron above search_dihedral_degrees (the robustness
-  // suite's bound on the share of flat tetrahedra), its points are searched for a better
-  // position (lines towards the sliver's other points, then axis steps): free points,
-  // points of a flat boundary within its plane, and split points and cap apexes (points
-  // that are apexes of pyramids and otherwise used by tetrahedra only). Those pyramids
-  // must stay valid (corners, sub-tetrahedra and checkMesh's face pyramids) with a
-  // scaled corner Jacobian of at least apex_pyramid_quality, or their own where that is
-  // lower: twice the suite's floor of 1e-3 in Verdict's normalisation, which scales a
-  // pyramid's corner by sqrt(2).
+  // Where nothing else mends a tetrahedron above the target, its points are searched
+  // for a better position (lines towards the sliver's other points, then axis steps):
+  // free points, and points of a flat boundary within its plane. For a tetrahedron above
+  // apex_dihedral_degrees (the robustness suite's bound on the share of flat tetrahedra)
+  // so are split points and cap apexes (points that are apexes of pyramids and otherwise
+  // used by tetrahedra only), whose pyramids must stay valid (corners, sub-tetrahedra
+  // and checkMesh's face pyramids) with a scaled corner Jacobian of at least
+  // apex_pyramid_quality, or their own where that is lower: twice the suite's floor of
+  // 1e-3 in Verdict's normalisation, which scales a pyramid's corner by sqrt(2).
   bool search_points = true;
-  double search_dihedral_degrees = 170.0;
+  double apex_dihedral_degrees = 170.0;
   double apex_pyramid_quality = 2e-3 / std::sqrt(2.0);
   bool insert_points = true;
 };
