@@ -99,7 +99,7 @@ class SliverRemoval {
         insert_a_point(t);
         if (!best_) insertion_failed_[static_cast<std::size_t>(t)] = 1;
       }
-      // The searched move, a hundred trials, comes last: taken before the insertion it
+      // The searched move, up to fifty trials a point, comes last: taken before the insertion it
       // trims slivers a new point would mend (176.9 degrees instead of 173.8 on the
       // patch of *A point in a corner under long edges*, docs/generate.md). Moving an
       // apex costs its pyramids shape, so apexes join it only for a tetrahedron above
@@ -441,11 +441,15 @@ class SliverRemoval {
       Vector3& x = complex_.points()[static_cast<std::size_t>(p)];
       const Vector3 start = x;
       // An apex's pyramids bound where it may go: each no flatter than the bound, or
-      // than itself where it starts flatter.
+      // than itself where it starts flatter. An apex with a pyramid that already fails
+      // (checkMesh's face pyramids can, in a cell that passes the corner test) stays:
+      // no floor would hold that pyramid.
       std::vector<double> pyramid_floors;
       if (pyramids)
         for (std::size_t pyramid : *pyramids)
           pyramid_floors.push_back(std::min(options_.apex_pyramid_quality, pyramid_quality(pyramid)));
+      if (std::any_of(pyramid_floors.begin(), pyramid_floors.end(), [](double floor) { return floor < 0.0; }))
+        continue;
       auto tally = [&]() {
         Tally result;
         for (int cell : cells) result.add(quality(complex_, cell), target());

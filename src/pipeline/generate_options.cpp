@@ -116,7 +116,9 @@ FarFieldOptions read_farfield_options(config::Section& table) {
 //   passes = 12                # 0: no sliver removal
 //   maximum_ring = 7
 //   smooth_points = true
-//   search_points = true       # search free points, split points and cap apexes, for tetrahedra above 170 degrees nothing else mends
+//   search_points = true       # last, for slivers nothing else mends: search free points
+//                              # (whatever smooth_points says); above 170 degrees also
+//                              # split points and cap apexes
 //   insert_points = true
 SliverOptions read_sliver_options(config::Section& table) {
   SliverOptions options;

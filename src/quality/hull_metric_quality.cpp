@@ -1,7 +1,7 @@
 // A mesh file holds no metric, but it holds the cells the far field was matched to: the
 // interface's tetrahedra on split outer cells, the caps' pyramids and the prisms whose
 // tops face the far field. Each far-field tetrahedron that shares a triangle with one of
-// them is judged in that cell's metric (Wild eq. 10-12 by its type: the Riemannian
+// them is judged in that cell's metric (Wild eq. 11-12 by its type: the Riemannian
 // invariant of a tetrahedron, the affine invariant of a pyramid or prism), so a
 // tetrahedron stretched as the cell beneath it is stretched measures as regular.
 #include "hull_metric_quality.hpp"

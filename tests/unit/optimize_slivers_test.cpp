@@ -438,10 +438,23 @@ TEST(SliverRemoval, ASplitPointMovesWithinItsPyramidsWhereNothingElseMendsASlive
   EXPECT_GE(pyramids_after, SliverOptions{}.apex_pyramid_quality);
   for (std::size_t pyramid = 0; pyramid < mesh.cell_count(CellType::pyramid); ++pyramid)
     EXPECT_EQ(inverted_face_pyramids(CellType::pyramid, mesh.points, mesh.cell(CellType::pyramid, pyramid)), 0);
-  // Only the split point moved; the cell's faces are where they were.
+  // Only the split point moved; the cell's faces are where they were, so its pieces
+  // still fill it, each the way round it was.
   const MixedMesh original = twisted_tip_cell();
   for (std::size_t point = 0; point < 8; ++point) EXPECT_EQ(mesh.points[point], original.points[point]);
   EXPECT_TRUE(match_faces(mesh).conforming());
+  auto cell_volume = [](const MixedMesh& pieces) {
+    double volume = total_volume(pieces);
+    for (std::size_t pyramid = 0; pyramid < pieces.cell_count(CellType::pyramid); ++pyramid)
+      volume += signed_volume(CellType::pyramid, pieces.points, pieces.cell(CellType::pyramid, pyramid));
+    return volume;
+  };
+  EXPECT_NEAR(cell_volume(mesh) / cell_volume(original), 1.0, 1e-9);
+  ASSERT_EQ(mesh.cell_count(CellType::tetrahedron), original.cell_count(CellType::tetrahedron));
+  for (std::size_t t = 0; t < mesh.cell_count(CellType::tetrahedron); ++t)
+    EXPECT_GT(signed_volume(CellType::tetrahedron, mesh.points, mesh.cell(CellType::tetrahedron, t)) *
+                  signed_volume(CellType::tetrahedron, original.points, original.cell(CellType::tetrahedron, t)),
+              0.0);
 }
 
 TEST(SliverRemoval, BadOptionsAreRejected) {

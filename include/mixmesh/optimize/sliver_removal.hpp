@@ -29,15 +29,15 @@
 //     star-shaped from the point: the tetrahedra whose circumsphere holds it, or, where
 //     no trial point's such cavity helps, only the sliver and the tetrahedron holding
 //     the point. A failed insertion is tried again in later passes on a tetrahedron
-//     flatter than halfway from the target to 180 degrees.
+//     flatter than halfway from the target to 180 degrees;
 //   - a searched point move, last, for a sliver none of the above mends: lines towards
 //     the sliver's other points, then axis steps, for its free points and, above
 //     `apex_dihedral_degrees`, for those that are the apex of pyramids and otherwise
 //     used by tetrahedra only (an interface cell's split point, a cap's apex), while
-//     every such pyramid stays valid and no flatter than `apex_pyramid_quality`;
+//     every such pyramid stays valid and no flatter than `apex_pyramid_quality`.
 // Faces shared with a pyramid, prism or hexahedron and boundary faces are never
-// removed, no point of them moves off its plane, so the mesh stays conforming with every face
-// and marker it had.
+// removed, and no point of them moves off its plane but an apex, whose pyramids move
+// with it, so the mesh stays conforming with every face and marker it had.
 #pragma once
 
 #include <cmath>
