@@ -17,8 +17,11 @@ namespace mixmesh::quality_detail {
 
 namespace {
 
-// The interface's split points: points that are the apex of three or more pyramids and
-// are used otherwise by tetrahedra only (a cap's apex tops one pyramid).
+// The interface's split points: points that are the apex of two or more pyramids and
+// are used otherwise by tetrahedra only. A cap's apex tops one pyramid; a split cell has
+// a pyramid on every quad that is not outer, so one with its top and a side on the hull
+// has two (a prism) or four (a hexahedron). A prism with two sides outer as well, whose
+// one pyramid looks like a cap, is the case this misses.
 std::vector<char> split_points(const MixedMesh& mesh) {
   std::vector<int> apexes(mesh.points.size(), 0);
   std::vector<char> other_use(mesh.points.size(), 0);
@@ -31,7 +34,7 @@ std::vector<char> split_points(const MixedMesh& mesh) {
   }
   std::vector<char> split(mesh.points.size(), 0);
   for (std::size_t point = 0; point < split.size(); ++point)
-    split[point] = apexes[point] >= 3 && !other_use[point];
+    split[point] = apexes[point] >= 2 && !other_use[point];
   return split;
 }
 

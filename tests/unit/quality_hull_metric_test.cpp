@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <utility>
 
 #include "mixmesh/mesh/cell_geometry.hpp"
 #include "mixmesh/quality/cell_quality.hpp"
@@ -60,6 +61,38 @@ TEST(QualityHullMetric, AnIsotropicTetrahedronOverAFlatCellMeasuresAsStretched) 
   EXPECT_LT(entry(report, "metric_shape").max, 0.1);
   EXPECT_GT(entry(report, "metric_edge_length").max, 50.0);
   EXPECT_GT(report.find("scaled_jacobian", "tetrahedron")->statistics.min, 0.5);
+}
+
+TEST(QualityHullMetric, AnOuterCellSplitWithTwoOuterFacesKeepsItsPiecesOutOfTheHullTetrahedra) {
+  // A prism split about its centre with its top and one side on the hull (a layer cell
+  // at the edge of a stopped region): two pyramids on the other sides, a tetrahedron on
+  // each triangle and two on the outer side. Its pieces are not far-field tetrahedra;
+  // the one far-field tetrahedron on the top is measured once, in its piece's metric.
+  MixedMesh mesh;
+  mesh.points = {Vector3(0, 0, 0),      Vector3(1, 0, 0), Vector3(0, 1, 0),
+                 Vector3(0, 0, 1),      Vector3(1, 0, 1), Vector3(0, 1, 1),
+                 Vector3(1.0 / 3.0, 1.0 / 3.0, 0.5), Vector3(1.0 / 3.0, 1.0 / 3.0, 1.8)};
+  auto tetrahedron = [&](Index a, Index b, Index c, Index d) {
+    std::array<Index, 4> nodes{a, b, c, d};
+    if (signed_volume(CellType::tetrahedron, mesh.points, nodes.data()) < 0.0) std::swap(nodes[1], nodes[2]);
+    mesh.add_cell(CellType::tetrahedron, nodes.data());
+  };
+  auto pyramid = [&](Index a, Index b, Index c, Index d) {
+    std::array<Index, 5> nodes{a, b, c, d, 6};
+    if (!cell_shape(CellType::pyramid, mesh.points, nodes.data()).valid()) std::swap(nodes[1], nodes[3]);
+    ASSERT_TRUE(cell_shape(CellType::pyramid, mesh.points, nodes.data()).valid());
+    mesh.add_cell(CellType::pyramid, nodes.data());
+  };
+  tetrahedron(0, 1, 2, 6);  // bottom
+  tetrahedron(3, 4, 5, 6);  // top, on the hull
+  tetrahedron(0, 1, 4, 6);  // the outer side 0-1-4-3, cut along 0-4
+  tetrahedron(0, 4, 3, 6);
+  pyramid(1, 2, 5, 4);
+  pyramid(2, 0, 3, 5);
+  tetrahedron(3, 4, 5, 7);  // the far field's
+  const QualityReport report = measure_quality(mesh);
+  EXPECT_EQ(entry(report, "metric_shape").count, 1u);
+  EXPECT_EQ(entry(report, "metric_edge_length").count, 6u);
 }
 
 TEST(QualityHullMetric, TetrahedraAloneHaveNoHullEntries) {
