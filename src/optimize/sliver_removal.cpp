@@ -544,8 +544,10 @@ class SliverRemoval {
   // lie in it. So the point goes part of the way towards each other point of the sliver
   // `t` and its centroid (the first part that helps on each line), then from the best
   // position so far by steps along the axes, halving from a twentieth of its edges' mean
-  // `length`; a point on a flat boundary stays in its plane. `x` is the point's
-  // coordinates, which `tally` reads.
+  // `length`. Where neither helps, the slab lies along none of those lines: the point
+  // tries 64 directions spread evenly over the sphere at radii halving from 0.4 of
+  // `length`, and the axis steps go on from the best of those. A point on a flat boundary
+  // stays in its plane. `x` is the point's coordinates, which `tally` reads.
   template <typename Tallies>
   void search_point(int t, Index p, const Vector3& plane, Vector3& x, const Vector3& start, Change& change,
                     const Tallies& tally, double length) {
@@ -558,6 +560,14 @@ class SliverRemoval {
       change.moved_to = trial;
       return true;
     };
+    auto moved = [&]() { return change.after.better_than(change.before); };
+    auto axis_steps = [&](Vector3 here) {
+      const Vector3 directions[6] = {Vector3::UnitX(),  -Vector3::UnitX(), Vector3::UnitY(),
+                                     -Vector3::UnitY(), Vector3::UnitZ(),  -Vector3::UnitZ()};
+      for (double step = 0.05 * length; step > 2e-3 * length; step *= 0.5)
+        for (const Vector3& direction : directions)
+          if (improves(here + step * direction)) here = change.moved_to;
+    };
     std::vector<Vector3> targets;
     Vector3 centroid = Vector3::Zero();
     for (Index node : complex_.nodes(t)) {
@@ -568,12 +578,27 @@ class SliverRemoval {
     for (const Vector3& target : targets)
       for (double part : {0.75, 0.5, 0.25, 0.125, 0.0625})
         if (improves(start + part * (target - start))) break;
-    Vector3 here = change.after.better_than(change.before) ? change.moved_to : start;
-    const Vector3 directions[6] = {Vector3::UnitX(),  -Vector3::UnitX(), Vector3::UnitY(),
-                                   -Vector3::UnitY(), Vector3::UnitZ(),  -Vector3::UnitZ()};
-    for (double step = 0.05 * length; step > 2e-3 * length; step *= 0.5)
-      for (const Vector3& direction : directions)
-        if (improves(here + step * direction)) here = change.moved_to;
+    axis_steps(moved() ? change.moved_to : start);
+    if (moved()) return;
+    for (const Vector3& direction : sphere_directions())
+      for (double part = 0.4; part > 0.01; part *= 0.5) improves(start + part * length * direction);
+    if (moved()) axis_steps(change.moved_to);
+  }
+
+  // Unit vectors spread evenly over the sphere (a Fibonacci lattice: equal bands in z,
+  // the golden angle between consecutive longitudes).
+  static const std::vector<Vector3>& sphere_directions() {
+    static const std::vector<Vector3> directions = [] {
+      constexpr int count = 64;
+      const double golden_angle = M_PI * (3.0 - std::sqrt(5.0));
+      std::vector<Vector3> result;
+      for (int i = 0; i < count; ++i) {
+        const double z = 1.0 - (2.0 * i + 1.0) / count, radius = std::sqrt(1.0 - z * z);
+        result.push_back(Vector3(radius * std::cos(golden_angle * i), radius * std::sin(golden_angle * i), z));
+      }
+      return result;
+    }();
+    return directions;
   }
 
   // Point insertion: a sliver whose four points lie on faces the pass cannot cross (two

@@ -457,6 +457,57 @@ TEST(SliverRemoval, ASplitPointMovesWithinItsPyramidsWhereNothingElseMendsASlive
               0.0);
 }
 
+// The outermost layer cell of a random wing (seed 79, wing 167) where its flat tip meets
+// the trailing edge, split about its centre: 14 mm long and 0.3 mm wide at one end,
+// 1.1 mm at the other, where its outer quad stands on edge, so it twists by some 70
+// degrees. The positions where the split point keeps its pyramids above the bound and
+// mends the sliver on the quad form a slab that no line towards the sliver's points and
+// no axis step from the centre reaches. Metres.
+MixedMesh tip_trailing_edge_cell() {
+  MixedMesh mesh;
+  for (const Vector3& point :
+       {Vector3(0.31980287277855424, 2.258511918933776, 0.27677122045761904),
+        Vector3(0.32012829503455564, 2.258406290615468, 0.27671027049673874),
+        Vector3(0.31897064742273495, 2.2713423058492386, 0.27594397077108),
+        Vector3(0.3187113092959849, 2.271994893533611, 0.2750391531024199),
+        Vector3(0.3200016262406762, 2.2586697762468546, 0.2781552030527231),
+        Vector3(0.32026997774628696, 2.2585196290488847, 0.2781055877016266),
+        Vector3(0.31908838178544197, 2.2723468509772586, 0.27692216165181754),
+        Vector3(0.31881049363712805, 2.27313965603186, 0.2758512559177234)})
+    mesh.points.push_back(point);
+  // Where the split point stood once the pass had moved it 1.1 mm from the cell's centre
+  // towards the narrow end.
+  mesh.points.push_back(Vector3(0.319473, 2.264538, 0.276687));
+  // Nodes 0-3 the inner quad, 4-7 the outer one above them, 8 the split point; the
+  // outer quad's shorter diagonal is 4-6.
+  for (const std::array<Index, 5>& pyramid : std::vector<std::array<Index, 5>>{
+           {0, 1, 2, 3, 8}, {0, 4, 5, 1, 8}, {1, 5, 6, 2, 8}, {2, 6, 7, 3, 8}, {3, 7, 4, 0, 8}})
+    mesh.add_cell(CellType::pyramid, pyramid.data());
+  for (const std::array<Index, 4>& tetrahedron :
+       std::vector<std::array<Index, 4>>{{4, 6, 5, 8}, {4, 7, 6, 8}})
+    mesh.add_cell(CellType::tetrahedron, tetrahedron.data());
+  tag_boundary_walls(mesh);
+  return mesh;
+}
+
+TEST(SliverRemoval, ASplitPointInAThinSlabIsFoundBySpreadDirections) {
+  MixedMesh mesh = tip_trailing_edge_cell();
+  std::size_t above = 0;
+  const double before = largest_dihedral(mesh, above);
+  ASSERT_GT(before, 175.0);
+  ASSERT_GT(smallest_pyramid_corner(mesh), SliverOptions{}.apex_pyramid_quality);
+  remove_slivers(mesh, SliverOptions{});
+  const double after = largest_dihedral(mesh, above);
+  const double pyramids = smallest_pyramid_corner(mesh);
+  std::printf("largest dihedral %.2f -> %.2f deg, smallest pyramid corner %.2e\n", before, after, pyramids);
+  // Lines and axis steps alone stop at 176 degrees with a pyramid at the bound.
+  EXPECT_LT(after, 170.0);
+  EXPECT_GE(pyramids, SliverOptions{}.apex_pyramid_quality);
+  for (std::size_t pyramid = 0; pyramid < mesh.cell_count(CellType::pyramid); ++pyramid)
+    EXPECT_EQ(inverted_face_pyramids(CellType::pyramid, mesh.points, mesh.cell(CellType::pyramid, pyramid)), 0);
+  EXPECT_TRUE(match_faces(mesh).conforming());
+}
+
 TEST(SliverRemoval, BadOptionsAreRejected) {
   MixedMesh mesh = cube_block(1);
   SliverOptions options;
