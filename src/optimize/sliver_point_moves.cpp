@@ -2,12 +2,30 @@
 // boundary, or a split point or cap apex) goes where its tetrahedra are better.
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <optional>
 #include <vector>
 
 #include "mixmesh/mesh/cell_geometry.hpp"
 #include "sliver_removal_pass.hpp"
 
 namespace mixmesh::optimize_detail {
+
+namespace {
+
+// Steps from `here` along the six axes, halving from a twentieth of `length` to a
+// five-hundredth; `improves(trial)` judges each and returns the position it keeps, if
+// it keeps one, and the steps go on from there.
+template <typename Improves>
+void axis_steps(Vector3 here, double length, const Improves& improves) {
+  const Vector3 axes[6] = {Vector3::UnitX(),  -Vector3::UnitX(), Vector3::UnitY(),
+                           -Vector3::UnitY(), Vector3::UnitZ(),  -Vector3::UnitZ()};
+  for (double step = 0.05 * length; step > 2e-3 * length; step *= 0.5)
+    for (const Vector3& axis : axes)
+      if (const std::optional<Vector3> kept = improves(here + step * axis)) here = *kept;
+}
+
+}  // namespace
 
 // The scaled corner Jacobian of a pyramid of the mesh, or -1 where it is invalid or
 // fails checkMesh's face-pyramid test.
@@ -149,23 +167,16 @@ void SliverRemoval::try_ordinary_moves(const Tetrahedron& nodes, int k, const Ve
 template <typename Tallies>
 void SliverRemoval::search_point(int t, Index p, const Vector3& plane, Vector3& x, const Vector3& start,
                                  Change& change, const Tallies& tally, double length) {
-  auto improves = [&](Vector3 trial) {
+  auto improves = [&](Vector3 trial) -> std::optional<Vector3> {
     trial -= plane.dot(trial - start) * plane;
     x = trial;
     const Tally result = tally();
-    if (!result.better_than(change.after)) return false;
+    if (!result.better_than(change.after)) return std::nullopt;
     change.after = result;
     change.moved_to = trial;
-    return true;
+    return trial;
   };
   auto moved = [&]() { return change.after.better_than(change.before); };
-  auto axis_steps = [&](Vector3 here) {
-    const Vector3 directions[6] = {Vector3::UnitX(),  -Vector3::UnitX(), Vector3::UnitY(),
-                                   -Vector3::UnitY(), Vector3::UnitZ(),  -Vector3::UnitZ()};
-    for (double step = 0.05 * length; step > 2e-3 * length; step *= 0.5)
-      for (const Vector3& direction : directions)
-        if (improves(here + step * direction)) here = change.moved_to;
-  };
   std::vector<Vector3> targets;
   Vector3 centroid = Vector3::Zero();
   for (Index node : complex_.nodes(t)) {
@@ -176,11 +187,11 @@ void SliverRemoval::search_point(int t, Index p, const Vector3& plane, Vector3& 
   for (const Vector3& target : targets)
     for (double part : {0.75, 0.5, 0.25, 0.125, 0.0625})
       if (improves(start + part * (target - start))) break;
-  axis_steps(moved() ? change.moved_to : start);
+  axis_steps(moved() ? change.moved_to : start, length, improves);
   if (moved()) return;
   for (const Vector3& direction : sphere_directions())
     for (double part = 0.4; part > 0.01; part *= 0.5) improves(start + part * length * direction);
-  if (moved()) axis_steps(change.moved_to);
+  if (moved()) axis_steps(change.moved_to, length, improves);
 }
 
 // Unit vectors spread evenly over the sphere (a Fibonacci lattice: equal bands in z,
@@ -197,6 +208,82 @@ const std::vector<Vector3>& SliverRemoval::sphere_directions() {
     return result;
   }();
   return directions;
+}
+
+std::size_t SliverRemoval::lift_pyramids() {
+  std::size_t lifted = 0;
+  for (std::size_t p = 0; p < complex_.points().size(); ++p) {
+    const std::vector<std::size_t>* pyramids = complex_.apex_pyramids(static_cast<Index>(p));
+    if (pyramids && lift_pyramid(static_cast<Index>(p), *pyramids)) ++lifted;
+  }
+  return lifted;
+}
+
+// A cap lowered to clear the hull, or the split point of a cell whose base is warped
+// (where a flat tip meets the trailing edge), can leave a pyramid under the bound that
+// no sliver calls for, since the tetrahedra round the apex are fine. The apex goes to
+// the nearest position found where its flattest pyramid reaches the bound, or else
+// comes closest: 64 directions spread over the sphere at radii doubling from 0.0125 to
+// 0.4 of its edges' mean length, then axis steps from the best of those. Above the
+// bound the pyramid counts as at it, so the apex moves no further than it must. Every
+// tetrahedron round it must stay at or above the target, or at or above itself where
+// it starts below, so the pass's work is kept and no new sliver appears.
+bool SliverRemoval::lift_pyramid(Index p, const std::vector<std::size_t>& pyramids) {
+  auto flattest = [&]() {
+    double worst = std::numeric_limits<double>::infinity();
+    for (std::size_t pyramid : pyramids) worst = std::min(worst, pyramid_quality(pyramid));
+    return worst;
+  };
+  if (!(flattest() < options_.apex_pyramid_quality)) return false;
+  const std::vector<int>& cells = complex_.around(p);
+  std::vector<double> floors;
+  for (int cell : cells) floors.push_back(std::min(quality(complex_, cell), target()));
+  // Tally: the worst is the flattest pyramid, the shortfall the tetrahedra's.
+  auto tally = [&]() {
+    Tally result;
+    result.worst = std::min(flattest(), options_.apex_pyramid_quality);
+    for (std::size_t k = 0; k < cells.size(); ++k) {
+      const double q = quality(complex_, cells[k]);
+      if (!(q >= floors[k])) {
+        result.worst = invalid_quality;
+        return result;
+      }
+      result.shortfall += std::max(0.0, target() - q);
+    }
+    return result;
+  };
+  Vector3& x = complex_.points()[static_cast<std::size_t>(p)];
+  const Vector3 start = x;
+  double length = 0.0;
+  int count = 0;
+  auto add_neighbour = [&](Index node) {
+    length += (point(node) - start).norm();
+    ++count;
+  };
+  for (int cell : cells)
+    for (Index node : complex_.nodes(cell))
+      if (node != p) add_neighbour(node);
+  for (std::size_t pyramid : pyramids) {
+    const Index* corners = complex_.mesh().cell(CellType::pyramid, pyramid);
+    std::for_each(corners, corners + 4, add_neighbour);
+  }
+  length /= count;
+  const Tally before = tally();
+  Tally best = before;
+  Vector3 best_position = start;
+  auto improves = [&](const Vector3& trial) -> std::optional<Vector3> {
+    x = trial;
+    const Tally result = tally();
+    if (!result.better_than(best)) return std::nullopt;
+    best = result;
+    best_position = trial;
+    return trial;
+  };
+  for (double part = 0.0125; part < 0.5; part *= 2.0)
+    for (const Vector3& direction : sphere_directions()) improves(start + part * length * direction);
+  axis_steps(best_position, length, improves);
+  x = best.better_than(before) ? best_position : start;
+  return x != start;
 }
 
 }  // namespace mixmesh::optimize_detail

@@ -187,6 +187,7 @@ SliverReport remove_slivers(MixedMesh& mesh, const SliverOptions& options) {
     ++report.passes;
     if (removal.pass(report) == 0) break;
   }
+  if (options.lift_pyramids) report.lifted_apexes = removal.lift_pyramids();
   measure(removal.complex(), options.target_dihedral_degrees, report.largest_dihedral_after,
           report.above_target_after, report.tetrahedra_after);
   removal.complex().write_back();

@@ -50,6 +50,10 @@ class SliverRemoval {
 
   // One pass over the tetrahedra above the target; returns the operations done.
   std::size_t pass(SliverReport& report);
+  // Moves every apex whose flattest pyramid is under options_.apex_pyramid_quality to
+  // raise that pyramid, no tetrahedron round it falling below the target or below
+  // itself; returns the apexes moved (sliver_point_moves.cpp).
+  std::size_t lift_pyramids();
 
  private:
   enum class Operation { edge_removal, face_flip, edge_split, point_collapse, point_move, point_insertion };
@@ -97,6 +101,7 @@ class SliverRemoval {
   void search_point(int t, Index p, const Vector3& plane, Vector3& x, const Vector3& start, Change& change,
                     const Tallies& tally, double length);
   static const std::vector<Vector3>& sphere_directions();
+  bool lift_pyramid(Index p, const std::vector<std::size_t>& pyramids);
 
   // Point insertion (sliver_insertion.cpp).
   enum class Cavity { circumsphere, smallest };

@@ -375,7 +375,8 @@ void sliver_stage(const SliverOptions& sliver_options, GenerateReport& report, c
            " edge removals, " + std::to_string(slivers.face_flips) + " face flips, " +
            std::to_string(slivers.edge_splits) + " edge splits, " + std::to_string(slivers.point_collapses) +
            " point collapses, " + std::to_string(slivers.smoothed_points) + " points moved, " +
-           std::to_string(slivers.point_insertions) + " points inserted");
+           std::to_string(slivers.point_insertions) + " points inserted, " +
+           std::to_string(slivers.lifted_apexes) + " apexes lifted");
 }
 
 }  // namespace

@@ -120,6 +120,8 @@ FarFieldOptions read_farfield_options(config::Section& table) {
 //                              # (whatever smooth_points says); above 170 degrees also
 //                              # split points and cap apexes
 //   insert_points = true
+//   lift_pyramids = true       # after the passes: move split points and cap apexes
+//                              # whose flattest pyramid is under twice the floor
 SliverOptions read_sliver_options(config::Section& table) {
   SliverOptions options;
   table.read("target_dihedral", options.target_dihedral_degrees, Bounds{90.0, 180.0, false, false});
@@ -128,6 +130,7 @@ SliverOptions read_sliver_options(config::Section& table) {
   table.read("smooth_points", options.smooth_points);
   table.read("search_points", options.search_points);
   table.read("insert_points", options.insert_points);
+  table.read("lift_pyramids", options.lift_pyramids);
   table.finish();
   return options;
 }

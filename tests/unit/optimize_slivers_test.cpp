@@ -384,15 +384,14 @@ TEST(SliverRemoval, AClusterOverNeedleHullFacesNeedsSearchedMoves) {
 MixedMesh twisted_tip_cell() {
   MixedMesh mesh;
   const Vector3 centre(4.5563713140527415, 23.390266184156925, 1.54811020978844);
-  for (const Vector3& point :
-       {Vector3(4.553659031813586, 23.2720066569659, 1.569957053363615),
-        Vector3(4.557819246182786, 23.26986101979523, 1.5692178880869498),
-        Vector3(4.553050507652694, 23.475145652805434, 1.505619448899794),
-        Vector3(4.547454578544482, 23.494704357746617, 1.4748800896865961),
-        Vector3(4.562406306101147, 23.28421581138744, 1.614911951649289),
-        Vector3(4.563876641261688, 23.28068146666267, 1.6149644402354248),
-        Vector3(4.559757578062668, 23.509919035301596, 1.5371210078345108),
-        Vector3(4.552946622802878, 23.535595472590508, 1.4982097985513398), centre})
+  for (const Vector3& point : {Vector3(4.553659031813586, 23.2720066569659, 1.569957053363615),
+                               Vector3(4.557819246182786, 23.26986101979523, 1.5692178880869498),
+                               Vector3(4.553050507652694, 23.475145652805434, 1.505619448899794),
+                               Vector3(4.547454578544482, 23.494704357746617, 1.4748800896865961),
+                               Vector3(4.562406306101147, 23.28421581138744, 1.614911951649289),
+                               Vector3(4.563876641261688, 23.28068146666267, 1.6149644402354248),
+                               Vector3(4.559757578062668, 23.509919035301596, 1.5371210078345108),
+                               Vector3(4.552946622802878, 23.535595472590508, 1.4982097985513398), centre})
     mesh.points.push_back(point - centre);
   // Nodes 0-3 the inner quad, 4-7 the outer one above them, 8 the split point.
   for (const std::array<Index, 5>& pyramid : std::vector<std::array<Index, 5>>{
@@ -437,7 +436,8 @@ TEST(SliverRemoval, ASplitPointMovesWithinItsPyramidsWhereNothingElseMendsASlive
   // The pyramids stay valid and no flatter than the bound (twice the robustness floor).
   EXPECT_GE(pyramids_after, SliverOptions{}.apex_pyramid_quality);
   for (std::size_t pyramid = 0; pyramid < mesh.cell_count(CellType::pyramid); ++pyramid)
-    EXPECT_EQ(inverted_face_pyramids(CellType::pyramid, mesh.points, mesh.cell(CellType::pyramid, pyramid)), 0);
+    EXPECT_EQ(inverted_face_pyramids(CellType::pyramid, mesh.points, mesh.cell(CellType::pyramid, pyramid)),
+              0);
   // Only the split point moved; the cell's faces are where they were, so its pieces
   // still fill it, each the way round it was.
   const MixedMesh original = twisted_tip_cell();
@@ -452,9 +452,10 @@ TEST(SliverRemoval, ASplitPointMovesWithinItsPyramidsWhereNothingElseMendsASlive
   EXPECT_NEAR(cell_volume(mesh) / cell_volume(original), 1.0, 1e-9);
   ASSERT_EQ(mesh.cell_count(CellType::tetrahedron), original.cell_count(CellType::tetrahedron));
   for (std::size_t t = 0; t < mesh.cell_count(CellType::tetrahedron); ++t)
-    EXPECT_GT(signed_volume(CellType::tetrahedron, mesh.points, mesh.cell(CellType::tetrahedron, t)) *
-                  signed_volume(CellType::tetrahedron, original.points, original.cell(CellType::tetrahedron, t)),
-              0.0);
+    EXPECT_GT(
+        signed_volume(CellType::tetrahedron, mesh.points, mesh.cell(CellType::tetrahedron, t)) *
+            signed_volume(CellType::tetrahedron, original.points, original.cell(CellType::tetrahedron, t)),
+        0.0);
 }
 
 // The outermost layer cell of a random wing (seed 79, wing 167) where its flat tip meets
@@ -465,15 +466,14 @@ TEST(SliverRemoval, ASplitPointMovesWithinItsPyramidsWhereNothingElseMendsASlive
 // no axis step from the centre reaches. Metres.
 MixedMesh tip_trailing_edge_cell() {
   MixedMesh mesh;
-  for (const Vector3& point :
-       {Vector3(0.31980287277855424, 2.258511918933776, 0.27677122045761904),
-        Vector3(0.32012829503455564, 2.258406290615468, 0.27671027049673874),
-        Vector3(0.31897064742273495, 2.2713423058492386, 0.27594397077108),
-        Vector3(0.3187113092959849, 2.271994893533611, 0.2750391531024199),
-        Vector3(0.3200016262406762, 2.2586697762468546, 0.2781552030527231),
-        Vector3(0.32026997774628696, 2.2585196290488847, 0.2781055877016266),
-        Vector3(0.31908838178544197, 2.2723468509772586, 0.27692216165181754),
-        Vector3(0.31881049363712805, 2.27313965603186, 0.2758512559177234)})
+  for (const Vector3& point : {Vector3(0.31980287277855424, 2.258511918933776, 0.27677122045761904),
+                               Vector3(0.32012829503455564, 2.258406290615468, 0.27671027049673874),
+                               Vector3(0.31897064742273495, 2.2713423058492386, 0.27594397077108),
+                               Vector3(0.3187113092959849, 2.271994893533611, 0.2750391531024199),
+                               Vector3(0.3200016262406762, 2.2586697762468546, 0.2781552030527231),
+                               Vector3(0.32026997774628696, 2.2585196290488847, 0.2781055877016266),
+                               Vector3(0.31908838178544197, 2.2723468509772586, 0.27692216165181754),
+                               Vector3(0.31881049363712805, 2.27313965603186, 0.2758512559177234)})
     mesh.points.push_back(point);
   // Where the split point stood once the pass had moved it 1.1 mm from the cell's centre
   // towards the narrow end.
@@ -504,7 +504,61 @@ TEST(SliverRemoval, ASplitPointInAThinSlabIsFoundBySpreadDirections) {
   EXPECT_LT(after, 170.0);
   EXPECT_GE(pyramids, SliverOptions{}.apex_pyramid_quality);
   for (std::size_t pyramid = 0; pyramid < mesh.cell_count(CellType::pyramid); ++pyramid)
-    EXPECT_EQ(inverted_face_pyramids(CellType::pyramid, mesh.points, mesh.cell(CellType::pyramid, pyramid)), 0);
+    EXPECT_EQ(inverted_face_pyramids(CellType::pyramid, mesh.points, mesh.cell(CellType::pyramid, pyramid)),
+              0);
+  EXPECT_TRUE(match_faces(mesh).conforming());
+}
+
+// A cap over a quad 1 long and 0.2 wide, its apex 1e-4 over the quad's middle (a cap
+// lowered to clear the hull), under four tetrahedra up to a point 0.3 above: no
+// tetrahedron is above the target, so only the pyramid calls for the apex to move.
+MixedMesh flat_cap() {
+  MixedMesh mesh;
+  mesh.points = {Vector3(0, 0, 0),   Vector3(1, 0, 0),        Vector3(1, 0.2, 0),
+                 Vector3(0, 0.2, 0), Vector3(0.5, 0.1, 1e-4), Vector3(0.5, 0.1, 0.3)};
+  const std::array<Index, 5> pyramid{0, 1, 2, 3, 4};
+  mesh.add_cell(CellType::pyramid, pyramid.data());
+  for (Index corner = 0; corner < 4; ++corner) {
+    const std::array<Index, 4> tetrahedron{corner, static_cast<Index>((corner + 1) % 4), 4, 5};
+    mesh.add_cell(CellType::tetrahedron, tetrahedron.data());
+  }
+  tag_boundary_walls(mesh);
+  return mesh;
+}
+
+TEST(SliverRemoval, AFlatCapIsLiftedWithoutMakingSlivers) {
+  const SliverOptions defaults;
+  MixedMesh fixed = flat_cap();
+  std::size_t above = 0;
+  const double dihedral_before = largest_dihedral(fixed, above);
+  const double pyramid_before = smallest_pyramid_corner(fixed);
+  ASSERT_LT(dihedral_before, defaults.target_dihedral_degrees);
+  ASSERT_LT(pyramid_before, 1e-3 / std::sqrt(2.0));
+  SliverOptions off;
+  off.lift_pyramids = false;
+  EXPECT_EQ(remove_slivers(fixed, off).lifted_apexes, 0u);
+  EXPECT_EQ(fixed.points[4], flat_cap().points[4]);
+
+  MixedMesh mesh = flat_cap();
+  const double volume =
+      total_volume(mesh) + signed_volume(CellType::pyramid, mesh.points, mesh.cell(CellType::pyramid, 0));
+  const SliverReport report = remove_slivers(mesh, defaults);
+  const double pyramid_after = smallest_pyramid_corner(mesh);
+  const double dihedral_after = largest_dihedral(mesh, above);
+  std::printf("pyramid %.2e -> %.2e, largest dihedral %.2f -> %.2f deg\n", pyramid_before, pyramid_after,
+              dihedral_before, dihedral_after);
+  EXPECT_EQ(report.lifted_apexes, 1u);
+  EXPECT_GE(pyramid_after, defaults.apex_pyramid_quality);
+  EXPECT_LE(dihedral_after, defaults.target_dihedral_degrees);
+  EXPECT_EQ(inverted_face_pyramids(CellType::pyramid, mesh.points, mesh.cell(CellType::pyramid, 0)), 0);
+  for (std::size_t point = 0; point < 6; ++point)
+    if (point != 4) {
+      EXPECT_EQ(mesh.points[point], flat_cap().points[point]);
+    }
+  EXPECT_NEAR(
+      (total_volume(mesh) + signed_volume(CellType::pyramid, mesh.points, mesh.cell(CellType::pyramid, 0))) /
+          volume,
+      1.0, 1e-9);
   EXPECT_TRUE(match_faces(mesh).conforming());
 }
 

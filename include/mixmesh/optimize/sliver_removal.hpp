@@ -34,7 +34,10 @@
 //     the sliver's other points, then axis steps, for its free points and, above
 //     `apex_dihedral_degrees`, for those that are the apex of pyramids and otherwise
 //     used by tetrahedra only (an interface cell's split point, a cap's apex), while
-//     every such pyramid stays valid and no flatter than `apex_pyramid_quality`.
+//     every such pyramid stays valid and no flatter than `apex_pyramid_quality`;
+//   - a pyramid lift, after the passes: such an apex whose flattest pyramid is under
+//     `apex_pyramid_quality` moves to raise it, no tetrahedron round it falling below
+//     the target (or below itself).
 // Faces shared with a pyramid, prism or hexahedron and boundary faces are never
 // removed, and no point of them moves off its plane but an apex, whose pyramids move
 // with it, so the mesh stays conforming with every face and marker it had.
@@ -66,6 +69,11 @@ struct SliverOptions {
   double apex_dihedral_degrees = 170.0;
   double apex_pyramid_quality = 2e-3 / std::sqrt(2.0);
   bool insert_points = true;
+  // After the passes, every such apex whose flattest pyramid lies under
+  // apex_pyramid_quality (a cap lowered to clear the hull, the split point of a cell on a
+  // warped base) is searched for a position that raises that pyramid, while no
+  // tetrahedron round it falls below the target, or below itself where it already is.
+  bool lift_pyramids = true;
 };
 
 struct SliverReport {
@@ -76,6 +84,7 @@ struct SliverReport {
   // Every point collapse removes one point (the mesh's points are renumbered).
   std::size_t edge_removals = 0, face_flips = 0, edge_splits = 0, point_collapses = 0, smoothed_points = 0,
               point_insertions = 0;
+  std::size_t lifted_apexes = 0;  // apexes moved to raise their flattest pyramid
   int passes = 0;
 };
 
