@@ -121,7 +121,9 @@ FarFieldOptions read_farfield_options(config::Section& table) {
 //                              # split points and cap apexes
 //   insert_points = true
 //   lift_pyramids = true       # after the passes: move split points and cap apexes
-//                              # whose flattest pyramid is under twice the floor
+//                              # whose flattest pyramid is under apex_pyramid_quality
+//   apex_dihedral = 170.0      # degrees: slivers above it may move split points and apexes
+//   apex_pyramid_quality = 2e-3  # scaled Jacobian (Verdict's) their pyramids keep
 SliverOptions read_sliver_options(config::Section& table) {
   SliverOptions options;
   table.read("target_dihedral", options.target_dihedral_degrees, Bounds{90.0, 180.0, false, false});
@@ -131,6 +133,15 @@ SliverOptions read_sliver_options(config::Section& table) {
   table.read("search_points", options.search_points);
   table.read("insert_points", options.insert_points);
   table.read("lift_pyramids", options.lift_pyramids);
+  table.read("apex_dihedral", options.apex_dihedral_degrees, Bounds{90.0, 180.0, true, true});
+  // Verdict scales a pyramid's corner Jacobian by sqrt(2) (a regular pyramid's corner
+  // reads 1 there), mixmesh's cell_shape does not; the key is in the units check_mesh.py
+  // and `mixmesh check` print.
+  if (table.has("apex_pyramid_quality")) {
+    double pyramid_quality = 0.0;
+    table.read("apex_pyramid_quality", pyramid_quality, Bounds{0.0, 1.0, true, false});
+    options.apex_pyramid_quality = pyramid_quality / std::sqrt(2.0);
+  }
   table.finish();
   return options;
 }
