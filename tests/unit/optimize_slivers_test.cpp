@@ -377,6 +377,19 @@ TEST(SliverRemoval, AClusterOverNeedleHullFacesNeedsSearchedMoves) {
   EXPECT_LT(with.above_170_after, without.above_170_after);
 }
 
+// The pieces of an outer cell split about a point, its walls tagged: points 0-3 are the
+// inner quad, 4-7 the outer one above them, 8 the split point; a pyramid on each kept
+// quad, and two tetrahedra on the outer quad, cut along its diagonal 4-6.
+void add_split_cell(MixedMesh& mesh) {
+  for (const std::array<Index, 5>& pyramid : std::vector<std::array<Index, 5>>{
+           {0, 1, 2, 3, 8}, {0, 4, 5, 1, 8}, {1, 5, 6, 2, 8}, {2, 6, 7, 3, 8}, {3, 7, 4, 0, 8}})
+    mesh.add_cell(CellType::pyramid, pyramid.data());
+  for (const std::array<Index, 4>& tetrahedron :
+       std::vector<std::array<Index, 4>>{{4, 6, 5, 8}, {4, 7, 6, 8}})
+    mesh.add_cell(CellType::tetrahedron, tetrahedron.data());
+  tag_boundary_walls(mesh);
+}
+
 // The outermost layer cell of a random wing (seed 71, wing 64) at its flat tip's trailing
 // edge, split about its centre: its outer quad narrows from 47 mm to 4 mm over 230 mm
 // and twists, and the tetrahedron on the quad's narrow half is a sliver that no flip
@@ -393,14 +406,7 @@ MixedMesh twisted_tip_cell() {
                                Vector3(4.559757578062668, 23.509919035301596, 1.5371210078345108),
                                Vector3(4.552946622802878, 23.535595472590508, 1.4982097985513398), centre})
     mesh.points.push_back(point - centre);
-  // Nodes 0-3 the inner quad, 4-7 the outer one above them, 8 the split point.
-  for (const std::array<Index, 5>& pyramid : std::vector<std::array<Index, 5>>{
-           {0, 1, 2, 3, 8}, {0, 4, 5, 1, 8}, {1, 5, 6, 2, 8}, {2, 6, 7, 3, 8}, {3, 7, 4, 0, 8}})
-    mesh.add_cell(CellType::pyramid, pyramid.data());
-  for (const std::array<Index, 4>& tetrahedron :
-       std::vector<std::array<Index, 4>>{{4, 6, 5, 8}, {4, 7, 6, 8}})
-    mesh.add_cell(CellType::tetrahedron, tetrahedron.data());
-  tag_boundary_walls(mesh);
+  add_split_cell(mesh);
   return mesh;
 }
 
@@ -478,15 +484,7 @@ MixedMesh tip_trailing_edge_cell() {
   // Where the split point stood once the pass had moved it 1.1 mm from the cell's centre
   // towards the narrow end.
   mesh.points.push_back(Vector3(0.319473, 2.264538, 0.276687));
-  // Nodes 0-3 the inner quad, 4-7 the outer one above them, 8 the split point; the
-  // outer quad's shorter diagonal is 4-6.
-  for (const std::array<Index, 5>& pyramid : std::vector<std::array<Index, 5>>{
-           {0, 1, 2, 3, 8}, {0, 4, 5, 1, 8}, {1, 5, 6, 2, 8}, {2, 6, 7, 3, 8}, {3, 7, 4, 0, 8}})
-    mesh.add_cell(CellType::pyramid, pyramid.data());
-  for (const std::array<Index, 4>& tetrahedron :
-       std::vector<std::array<Index, 4>>{{4, 6, 5, 8}, {4, 7, 6, 8}})
-    mesh.add_cell(CellType::tetrahedron, tetrahedron.data());
-  tag_boundary_walls(mesh);
+  add_split_cell(mesh);
   return mesh;
 }
 
