@@ -37,6 +37,30 @@ double SliverRemoval::pyramid_quality(std::size_t pyramid) const {
   return shape.min_corner_jacobian;
 }
 
+// The points next to p (through its tetrahedra and, for an apex, the base corners of
+// its pyramids): their mean and their mean distance from p, the scale of its moves.
+SliverRemoval::Neighbourhood SliverRemoval::neighbourhood(Index p, const std::vector<std::size_t>* pyramids) {
+  const Vector3 start = point(p);
+  Neighbourhood result{Vector3::Zero(), 0.0};
+  int count = 0;
+  auto add_neighbour = [&](Index node) {
+    result.mean += point(node);
+    result.length += (point(node) - start).norm();
+    ++count;
+  };
+  for (int cell : complex_.around(p))
+    for (Index node : complex_.nodes(cell))
+      if (node != p) add_neighbour(node);
+  if (pyramids)
+    for (std::size_t pyramid : *pyramids) {
+      const Index* corners = complex_.mesh().cell(CellType::pyramid, pyramid);
+      std::for_each(corners, corners + 4, add_neighbour);
+    }
+  result.mean /= count;
+  result.length /= count;
+  return result;
+}
+
 // Point move: a free point of t to the best of a few trial positions, towards the
 // mean of its neighbours and along the normal of the opposite face (a sliver's fourth
 // point lies almost in the plane of the other three). A point on a flat boundary (the
@@ -73,24 +97,7 @@ void SliverRemoval::move_a_point(int t, bool searched, bool apexes) {
             result.add(invalid_quality, target());
       return result;
     };
-    Vector3 mean = Vector3::Zero();
-    double length = 0.0;
-    int count = 0;
-    auto add_neighbour = [&](Index node) {
-      mean += point(node);
-      length += (point(node) - start).norm();
-      ++count;
-    };
-    for (int cell : cells)
-      for (Index node : complex_.nodes(cell))
-        if (node != p) add_neighbour(node);
-    if (pyramids)
-      for (std::size_t pyramid : *pyramids) {
-        const Index* corners = complex_.mesh().cell(CellType::pyramid, pyramid);
-        std::for_each(corners, corners + 4, add_neighbour);
-      }
-    mean /= count;
-    length /= count;
+    const auto [mean, length] = neighbourhood(p, pyramids);
     Change change;
     change.operation = Operation::point_move;
     change.before = change.after = tally();
@@ -254,20 +261,7 @@ bool SliverRemoval::lift_pyramid(Index p, const std::vector<std::size_t>& pyrami
   };
   Vector3& x = complex_.points()[static_cast<std::size_t>(p)];
   const Vector3 start = x;
-  double length = 0.0;
-  int count = 0;
-  auto add_neighbour = [&](Index node) {
-    length += (point(node) - start).norm();
-    ++count;
-  };
-  for (int cell : cells)
-    for (Index node : complex_.nodes(cell))
-      if (node != p) add_neighbour(node);
-  for (std::size_t pyramid : pyramids) {
-    const Index* corners = complex_.mesh().cell(CellType::pyramid, pyramid);
-    std::for_each(corners, corners + 4, add_neighbour);
-  }
-  length /= count;
+  const double length = neighbourhood(p, &pyramids).length;
   const Tally before = tally();
   Tally best = before;
   Vector3 best_position = start;
@@ -282,7 +276,7 @@ bool SliverRemoval::lift_pyramid(Index p, const std::vector<std::size_t>& pyrami
   for (double part = 0.0125; part < 0.5; part *= 2.0)
     for (const Vector3& direction : sphere_directions()) improves(start + part * length * direction);
   axis_steps(best_position, length, improves);
-  x = best.better_than(before) ? best_position : start;
+  x = best_position;  // the start unless a trial beat it
   return x != start;
 }
 

@@ -92,6 +92,11 @@ class SliverRemoval {
 
   // Point moves (sliver_point_moves.cpp).
   double pyramid_quality(std::size_t pyramid) const;
+  struct Neighbourhood {
+    Vector3 mean;
+    double length;
+  };
+  Neighbourhood neighbourhood(Index p, const std::vector<std::size_t>* pyramids);
   void move_a_point(int t, bool searched, bool apexes = false);
   template <typename Tallies>
   void try_ordinary_moves(const Tetrahedron& nodes, int k, const Vector3& plane, Vector3& x,

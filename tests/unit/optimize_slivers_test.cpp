@@ -419,6 +419,22 @@ double smallest_pyramid_corner(const MixedMesh& mesh) {
   return smallest;
 }
 
+// The volume of the tetrahedra and the pyramids together.
+double volume_with_pyramids(const MixedMesh& mesh) {
+  double volume = total_volume(mesh);
+  for (std::size_t pyramid = 0; pyramid < mesh.cell_count(CellType::pyramid); ++pyramid)
+    volume += signed_volume(CellType::pyramid, mesh.points, mesh.cell(CellType::pyramid, pyramid));
+  return volume;
+}
+
+// Every pyramid passes checkMesh's face-pyramid test.
+void expect_face_pyramids_positive(const MixedMesh& mesh) {
+  for (std::size_t pyramid = 0; pyramid < mesh.cell_count(CellType::pyramid); ++pyramid)
+    EXPECT_EQ(inverted_face_pyramids(CellType::pyramid, mesh.points, mesh.cell(CellType::pyramid, pyramid)),
+              0)
+        << "pyramid " << pyramid;
+}
+
 TEST(SliverRemoval, ASplitPointMovesWithinItsPyramidsWhereNothingElseMendsASliver) {
   MixedMesh fixed = twisted_tip_cell();
   std::size_t above = 0;
@@ -441,21 +457,13 @@ TEST(SliverRemoval, ASplitPointMovesWithinItsPyramidsWhereNothingElseMendsASlive
   EXPECT_LT(after, 170.0);
   // The pyramids stay valid and no flatter than the bound (twice the robustness floor).
   EXPECT_GE(pyramids_after, SliverOptions{}.apex_pyramid_quality);
-  for (std::size_t pyramid = 0; pyramid < mesh.cell_count(CellType::pyramid); ++pyramid)
-    EXPECT_EQ(inverted_face_pyramids(CellType::pyramid, mesh.points, mesh.cell(CellType::pyramid, pyramid)),
-              0);
+  expect_face_pyramids_positive(mesh);
   // Only the split point moved; the cell's faces are where they were, so its pieces
   // still fill it, each the way round it was.
   const MixedMesh original = twisted_tip_cell();
   for (std::size_t point = 0; point < 8; ++point) EXPECT_EQ(mesh.points[point], original.points[point]);
   EXPECT_TRUE(match_faces(mesh).conforming());
-  auto cell_volume = [](const MixedMesh& pieces) {
-    double volume = total_volume(pieces);
-    for (std::size_t pyramid = 0; pyramid < pieces.cell_count(CellType::pyramid); ++pyramid)
-      volume += signed_volume(CellType::pyramid, pieces.points, pieces.cell(CellType::pyramid, pyramid));
-    return volume;
-  };
-  EXPECT_NEAR(cell_volume(mesh) / cell_volume(original), 1.0, 1e-9);
+  EXPECT_NEAR(volume_with_pyramids(mesh) / volume_with_pyramids(original), 1.0, 1e-9);
   ASSERT_EQ(mesh.cell_count(CellType::tetrahedron), original.cell_count(CellType::tetrahedron));
   for (std::size_t t = 0; t < mesh.cell_count(CellType::tetrahedron); ++t)
     EXPECT_GT(
@@ -501,9 +509,7 @@ TEST(SliverRemoval, ASplitPointInAThinSlabIsFoundBySpreadDirections) {
   // Lines and axis steps alone stop at 176 degrees with a pyramid at the bound.
   EXPECT_LT(after, 170.0);
   EXPECT_GE(pyramids, SliverOptions{}.apex_pyramid_quality);
-  for (std::size_t pyramid = 0; pyramid < mesh.cell_count(CellType::pyramid); ++pyramid)
-    EXPECT_EQ(inverted_face_pyramids(CellType::pyramid, mesh.points, mesh.cell(CellType::pyramid, pyramid)),
-              0);
+  expect_face_pyramids_positive(mesh);
   EXPECT_TRUE(match_faces(mesh).conforming());
 }
 
@@ -538,8 +544,7 @@ TEST(SliverRemoval, AFlatCapIsLiftedWithoutMakingSlivers) {
   EXPECT_EQ(fixed.points[4], flat_cap().points[4]);
 
   MixedMesh mesh = flat_cap();
-  const double volume =
-      total_volume(mesh) + signed_volume(CellType::pyramid, mesh.points, mesh.cell(CellType::pyramid, 0));
+  const double volume = volume_with_pyramids(mesh);
   const SliverReport report = remove_slivers(mesh, defaults);
   const double pyramid_after = smallest_pyramid_corner(mesh);
   const double dihedral_after = largest_dihedral(mesh, above);
@@ -548,15 +553,12 @@ TEST(SliverRemoval, AFlatCapIsLiftedWithoutMakingSlivers) {
   EXPECT_EQ(report.lifted_apexes, 1u);
   EXPECT_GE(pyramid_after, defaults.apex_pyramid_quality);
   EXPECT_LE(dihedral_after, defaults.target_dihedral_degrees);
-  EXPECT_EQ(inverted_face_pyramids(CellType::pyramid, mesh.points, mesh.cell(CellType::pyramid, 0)), 0);
+  expect_face_pyramids_positive(mesh);
   for (std::size_t point = 0; point < 6; ++point)
     if (point != 4) {
       EXPECT_EQ(mesh.points[point], flat_cap().points[point]);
     }
-  EXPECT_NEAR(
-      (total_volume(mesh) + signed_volume(CellType::pyramid, mesh.points, mesh.cell(CellType::pyramid, 0))) /
-          volume,
-      1.0, 1e-9);
+  EXPECT_NEAR(volume_with_pyramids(mesh) / volume, 1.0, 1e-9);
   EXPECT_TRUE(match_faces(mesh).conforming());
 }
 
