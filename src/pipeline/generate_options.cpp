@@ -1,8 +1,8 @@
 // The tables of a generate config. Defaults live in the stage option structs; this
 // file only maps keys onto them.
 #include <algorithm>
-#include <cmath>
 
+#include "mixmesh/mesh/cell_geometry.hpp"
 #include "mixmesh/pipeline/deform_options.hpp"
 #include "mixmesh/pipeline/generate.hpp"
 #include "mixmesh/pipeline/surface_options.hpp"
@@ -134,13 +134,11 @@ SliverOptions read_sliver_options(config::Section& table) {
   table.read("insert_points", options.insert_points);
   table.read("lift_pyramids", options.lift_pyramids);
   table.read("apex_dihedral", options.apex_dihedral_degrees, Bounds{90.0, 180.0, true, true});
-  // Verdict scales a pyramid's corner Jacobian by sqrt(2) (a regular pyramid's corner
-  // reads 1 there), mixmesh's cell_shape does not; the key is in the units check_mesh.py
-  // and `mixmesh check` print.
+  // The key is in Verdict's units, as check_mesh.py and `mixmesh check` print it.
   if (table.has("apex_pyramid_quality")) {
     double pyramid_quality = 0.0;
     table.read("apex_pyramid_quality", pyramid_quality, Bounds{0.0, 1.0, true, false});
-    options.apex_pyramid_quality = pyramid_quality / std::sqrt(2.0);
+    options.apex_pyramid_quality = pyramid_quality / verdict_corner_factor;
   }
   table.finish();
   return options;

@@ -22,7 +22,7 @@ double jacobian_normaliser(CellType type) {
   switch (type) {
     case CellType::tetrahedron:
     case CellType::pyramid:
-      return std::sqrt(2.0);
+      return verdict_corner_factor;
     case CellType::prism:
       return 2.0 / std::sqrt(3.0);
     case CellType::hexahedron:
@@ -97,7 +97,7 @@ double scaled_jacobian(CellType type, const std::vector<Vector3>& points, const 
     }
     const double determinant = tetrahedron_volume6(at(points, nodes[0]), at(points, nodes[1]),
                                                    at(points, nodes[2]), at(points, nodes[3]));
-    return largest > 0.0 ? std::sqrt(2.0) * determinant / largest : 0.0;
+    return largest > 0.0 ? verdict_corner_factor * determinant / largest : 0.0;
   }
   double worst = std::numeric_limits<double>::infinity();
   for (int corner = 0; corner < cell.corner_count; ++corner) {

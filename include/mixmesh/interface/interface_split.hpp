@@ -22,12 +22,12 @@
 #pragma once
 
 #include <array>
-#include <cmath>
 #include <cstddef>
 #include <string>
 #include <vector>
 
 #include "mixmesh/core/error.hpp"
+#include "mixmesh/mesh/cell_geometry.hpp"
 #include "mixmesh/mesh/mixed_mesh.hpp"
 
 namespace mixmesh {
@@ -111,9 +111,8 @@ struct InterfaceOptions {
   // sheared along the span at a blunt base's end there) keeps its cells whole and its
   // outer quads are capped as an unsplittable cell's, where those caps' pyramids are
   // better and no such cap stands next to it (the valley between two low caps over a
-  // long shared edge is flat). The robustness suite's floor, 1e-3 in Verdict's
-  // normalisation, which scales a pyramid's corner Jacobian by sqrt(2) (check_mesh.py).
-  double split_pyramid_floor = 1e-3 / std::sqrt(2.0);
+  // long shared edge is flat). The robustness suite's floor, 1e-3 in Verdict's units.
+  double split_pyramid_floor = 1e-3 / verdict_corner_factor;
 };
 
 // An outer cell that can neither be split about its centre nor capped (a layer cell

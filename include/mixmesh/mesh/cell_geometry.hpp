@@ -23,6 +23,11 @@ struct CellShape {
   bool valid() const { return volume > 0.0 && negative_subtetrahedra == 0 && negative_corners == 0; }
 };
 
+// Verdict's scaled Jacobian of a tetrahedron or a pyramid is min_corner_jacobian times
+// this factor (sqrt 2: a regular one's corner then reads 1). check_mesh.py and
+// `mixmesh check` print Verdict's value; a floor given in those units is divided by it.
+inline constexpr double verdict_corner_factor = 1.41421356237309504880;
+
 // nodes: node_count(type) indices into points.
 CellShape cell_shape(CellType type, const std::vector<Vector3>& points, const Index* nodes);
 
@@ -33,13 +38,13 @@ inline double tetrahedron_volume6(const Vector3& a, const Vector3& b, const Vect
   return (b - a).cross(c - a).dot(d - a);
 }
 
-// The largest dihedral angle of tetrahedron (a, b, c, d), in degrees: near 180 for a
-// sliver (four nearly coplanar, well-spread points), at most 90 for a tetrahedron with a
-// right-angled corner however it is stretched; 180 for a degenerate one.
 // Centre of the sphere through the four points; none when they are coplanar.
 std::optional<Vector3> tetrahedron_circumcentre(const Vector3& a, const Vector3& b, const Vector3& c,
                                                 const Vector3& d);
 
+// The largest dihedral angle of tetrahedron (a, b, c, d), in degrees: near 180 for a
+// sliver (four nearly coplanar, well-spread points), at most 90 for a tetrahedron with a
+// right-angled corner however it is stretched; 180 for a degenerate one.
 double largest_dihedral_degrees(const Vector3& a, const Vector3& b, const Vector3& c, const Vector3& d);
 
 // Area-weighted normal of a face (Newell's method): length = area for a planar face.

@@ -43,9 +43,9 @@
 // with it, so the mesh stays conforming with every face and marker it had.
 #pragma once
 
-#include <cmath>
 #include <cstddef>
 
+#include "mixmesh/mesh/cell_geometry.hpp"
 #include "mixmesh/mesh/mixed_mesh.hpp"
 
 namespace mixmesh {
@@ -64,10 +64,10 @@ struct SliverOptions {
   // used by tetrahedra only), whose pyramids must stay valid (corners, sub-tetrahedra
   // and checkMesh's face pyramids) with a scaled corner Jacobian of at least
   // apex_pyramid_quality, or their own where that is lower: twice the suite's floor of
-  // 1e-3 in Verdict's normalisation, which scales a pyramid's corner by sqrt(2).
+  // 1e-3 in Verdict's units.
   bool search_points = true;
   double apex_dihedral_degrees = 170.0;
-  double apex_pyramid_quality = 2e-3 / std::sqrt(2.0);
+  double apex_pyramid_quality = 2e-3 / verdict_corner_factor;
   bool insert_points = true;
   // After the passes, every such apex whose flattest pyramid lies under
   // apex_pyramid_quality (a cap lowered to clear the hull, the split point of a cell on a
