@@ -1,5 +1,5 @@
 // Parts of the far-field stage: the size field, the outer boundary, the symmetry
-// plane, the anisotropic layer points and the TetGen call.
+// plane, the anisotropic layer points, the TetGen call and the boundary faces.
 #pragma once
 
 #include <array>
@@ -104,5 +104,13 @@ bool negative_orientation(const std::vector<Vector3>& points,
 std::size_t flat_tetrahedra(const std::vector<Vector3>& points,
                             const std::vector<std::array<Index, 4>>& tetrahedra, bool negative,
                             Vector3* first = nullptr);
+
+// The tetrahedra's boundary faces (faces used by one tetrahedron; `global`: the global
+// number of every TetGen point) must be the input triangles, each once: the hull's,
+// which the layer cells close and so get no face, and the symmetry plane's and the
+// outer boundary's, added with their markers (hull_faces.cpp).
+void add_boundary_faces(const std::vector<Index>& global, const std::vector<Triangle>& hull,
+                        const std::vector<Triangle>& plane, const std::vector<Triangle>& outer,
+                        const FarFieldOptions& options, MixedMesh& mesh);
 
 }  // namespace mixmesh::farfield_detail
