@@ -17,7 +17,8 @@ namespace {
 
 // Whether `node` lies on a wall's line (its base is prescribed).
 bool on_wall_line(const LayerLines& lines, const BoundaryMotion& boundary, std::size_t node) {
-  return lines.base[node] >= 0 && boundary.roles[static_cast<std::size_t>(lines.base[node])] == NodeRole::prescribed;
+  return lines.base[node] >= 0 &&
+         boundary.roles[static_cast<std::size_t>(lines.base[node])] == NodeRole::prescribed;
 }
 
 // A wall's line is moved rigidly to its top, and what the method had there that the
@@ -72,7 +73,8 @@ void carry_top_offsets(const LayerLines& lines, const BoundaryMotion& boundary,
     const Vector3& operator()(const Top& top) const { return top.position; }
   };
   using Cloud = PointCloud<Top, TopPosition>;
-  using Tree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, Cloud>, Cloud, 3, Index>;
+  using Tree =
+      nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, Cloud>, Cloud, 3, Index>;
   const Cloud cloud{&tops};
   const Tree tree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(10));
   constexpr std::size_t nearest_count = 8;

@@ -1,3 +1,5 @@
+// The far field's tetrahedron faces against the input triangles: the boundary faces
+// tagged with their markers, and the metric lengths of the edges on the hull.
 #include <algorithm>
 #include <map>
 #include <string>

@@ -57,7 +57,6 @@ std::vector<int> fan_ring(const Front& front, int column, bool& closed) {
   return {};
 }
 
-
 // Closes a sheet's side edges by a wrap face each: the free edges of the sheet that lie
 // neither in the symmetry plane nor at the sheet's downstream end (a wake's tip edge).
 // Without it each layer leaves a side face along the edge as thin as the layer, whose
@@ -129,7 +128,6 @@ void add_wrap_faces(const SurfaceMesh& surface, const std::vector<char>& attache
     }
   }
 }
-
 
 // The front faces: each wall face once (a split face as a quad on both sheet lines),
 // each wake face twice, once per side. Returns each node's columns by side + 1.

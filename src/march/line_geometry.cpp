@@ -195,13 +195,12 @@ std::vector<Vector3> column_normals(const Front& front, const std::vector<Vector
     auto at = [&](int k) -> const Vector3& {
       return positions[static_cast<std::size_t>(f.columns[static_cast<std::size_t>((k + n) % n)])];
     };
-    Vector3 area = Vector3::Zero();
-    for (int k = 0; k < n; ++k) area += at(k).cross(at(k + 1));
+    const Vector3 area = face_area_vector(positions, f.columns.data(), n);
     for (int k = 0; k < n; ++k) {
       const auto column = static_cast<std::size_t>(f.columns[static_cast<std::size_t>(k)]);
       const double weight = !f.wall && on_wall[column] ? wake_weight : 1.0;
       if (!angle_weighted) {
-        sum[column] += 0.5 * weight * area;
+        sum[column] += weight * area;
         continue;
       }
       if (at(k + 1) == at(k) || at(k - 1) == at(k)) {
@@ -226,9 +225,8 @@ std::vector<Vector3> column_normals(const Front& front, const std::vector<Vector
       return unit_or(provisional[column(to)], Vector3::Zero()) -
              unit_or(provisional[column(k)], Vector3::Zero());
     };
-    Vector3 area = Vector3::Zero();
-    for (int c = 0; c < n; ++c) area += positions[column(c)].cross(positions[column(c + 1)]);
-    add_corner(column(k), corner.weight, edge(k + 1), edge(k - 1), area);
+    add_corner(column(k), corner.weight, edge(k + 1), edge(k - 1),
+               face_area_vector(positions, f.columns.data(), n));
   }
   std::vector<Vector3> normals(positions.size());
   for (std::size_t c = 0; c < positions.size(); ++c) {

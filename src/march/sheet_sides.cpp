@@ -6,6 +6,7 @@
 #include <set>
 
 #include "mixmesh/core/error.hpp"
+#include "mixmesh/mesh/cell_geometry.hpp"
 
 namespace mixmesh::march_detail {
 
@@ -58,14 +59,6 @@ std::vector<SurfaceFace> surface_faces(const SurfaceMesh& surface, std::vector<s
 }
 
 namespace {
-
-Vector3 area_vector(const std::vector<Vector3>& points, const SurfaceFace& face) {
-  Vector3 sum = Vector3::Zero();
-  for (int k = 0; k < face.corner_count; ++k)
-    sum += points[static_cast<std::size_t>(face.nodes[static_cast<std::size_t>(k)])].cross(
-        points[static_cast<std::size_t>(face.nodes[static_cast<std::size_t>((k + 1) % face.corner_count)])]);
-  return 0.5 * sum;
-}
 
 struct JunctionPlan {
   int face = -1;  // surface face index of the split triangle
@@ -185,7 +178,7 @@ SheetSides sheet_sides(const SurfaceMesh& surface, const std::vector<SurfaceFace
   std::vector<char> on_wake(point_count, 0);
   for (const SurfaceFace& face : faces)
     if (face.wake) {
-      const Vector3 area = area_vector(surface.points, face);
+      const Vector3 area = face_area_vector(surface.points, face.nodes.data(), face.corner_count);
       for (int k = 0; k < face.corner_count; ++k) {
         const auto node = static_cast<std::size_t>(face.nodes[static_cast<std::size_t>(k)]);
         wake_normal[node] += area;
@@ -202,7 +195,8 @@ SheetSides sheet_sides(const SurfaceMesh& surface, const std::vector<SurfaceFace
   for (std::size_t f = 0; f < faces.size(); ++f) {
     const SurfaceFace& face = faces[f];
     if (face.wake) continue;
-    const Vector3 face_normal = area_vector(surface.points, face).normalized();
+    const Vector3 face_normal =
+        face_area_vector(surface.points, face.nodes.data(), face.corner_count).normalized();
     for (int k = 0; k < face.corner_count; ++k) {
       const Index node = face.nodes[static_cast<std::size_t>(k)];
       if (!on_wake[static_cast<std::size_t>(node)]) continue;
