@@ -5,6 +5,8 @@
 # only translates and that st = 1 carries it strictly further than st = 0.5 and st = 4. The
 # full studies (three shapes; rotation 6 × 6 pairs up to 360°, translation 8 × 3 pairs, the
 # paper's combined movements on the rectangle) are heavy, except translation (~10 s).
+# Each study has its own output folder: they write the same shapes' meshes (gmsh's .geo,
+# .msh and the text mesh), and ctest -j runs them side by side.
 if(TARGET mixmesh_deform)
   add_executable(deform_idw_study ${PROJECT_SOURCE_DIR}/tests/bench/deform_idw_study.cpp)
   target_compile_options(deform_idw_study PRIVATE ${mixmesh_warnings})
@@ -12,13 +14,13 @@ if(TARGET mixmesh_deform)
 
   add_test(NAME deform_idw_study_quick
            COMMAND ${MIXMESH_PYTHON} ${PROJECT_SOURCE_DIR}/scripts/idw-study.py
-                   --program $<TARGET_FILE:deform_idw_study> --out ${CMAKE_CURRENT_BINARY_DIR}/idw-study-quick
+                   --program $<TARGET_FILE:deform_idw_study> --out ${CMAKE_CURRENT_BINARY_DIR}/idw-study-quick/rotation
                    --quick --require-angle 45 --check-rotation-term)
   set_tests_properties(deform_idw_study_quick PROPERTIES LABELS regression)
 
   add_test(NAME deform_idw_study_translation_quick
            COMMAND ${MIXMESH_PYTHON} ${PROJECT_SOURCE_DIR}/scripts/idw-study.py
-                   --program $<TARGET_FILE:deform_idw_study> --out ${CMAKE_CURRENT_BINARY_DIR}/idw-study-quick
+                   --program $<TARGET_FILE:deform_idw_study> --out ${CMAKE_CURRENT_BINARY_DIR}/idw-study-quick/translation
                    --motion translation --quick --check-translation-exponent)
   set_tests_properties(deform_idw_study_translation_quick PROPERTIES LABELS regression)
 
@@ -34,18 +36,18 @@ if(TARGET mixmesh_deform)
 
   add_test(NAME deform_idw_study_full
            COMMAND ${MIXMESH_PYTHON} ${PROJECT_SOURCE_DIR}/scripts/idw-study.py
-                   --program $<TARGET_FILE:deform_idw_study> --out ${CMAKE_CURRENT_BINARY_DIR}/idw-study)
+                   --program $<TARGET_FILE:deform_idw_study> --out ${CMAKE_CURRENT_BINARY_DIR}/idw-study/rotation)
   set_tests_properties(deform_idw_study_full PROPERTIES LABELS "regression;heavy")
   # The translation study is cheap (~10 s): on all three shapes and st = 0.5 … 4, sr changes
   # nothing and st = 1 goes strictly furthest.
   add_test(NAME deform_idw_study_translation_full
            COMMAND ${MIXMESH_PYTHON} ${PROJECT_SOURCE_DIR}/scripts/idw-study.py
-                   --program $<TARGET_FILE:deform_idw_study> --out ${CMAKE_CURRENT_BINARY_DIR}/idw-study
+                   --program $<TARGET_FILE:deform_idw_study> --out ${CMAKE_CURRENT_BINARY_DIR}/idw-study/translation
                    --motion translation --check-translation-exponent)
   set_tests_properties(deform_idw_study_translation_full PROPERTIES LABELS regression)
   add_test(NAME deform_idw_study_combined_full
            COMMAND ${MIXMESH_PYTHON} ${PROJECT_SOURCE_DIR}/scripts/idw-study.py
-                   --program $<TARGET_FILE:deform_idw_study> --out ${CMAKE_CURRENT_BINARY_DIR}/idw-study
+                   --program $<TARGET_FILE:deform_idw_study> --out ${CMAKE_CURRENT_BINARY_DIR}/idw-study/combined
                    --motion combined)
   set_tests_properties(deform_idw_study_combined_full PROPERTIES LABELS "regression;heavy")
 endif()
