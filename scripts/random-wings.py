@@ -1,11 +1,12 @@
 #!/usr/bin/env python3
 """Random but ordinary wing configs for `mixmesh generate` (the robustness suite, issue #13).
 
-    scripts/random-wings.py N SEED OUTDIR
+    scripts/random-wings.py N SEED OUTDIR [--layers L1,L2,...]
 
 writes OUTDIR/wing_SEED_0001.toml ... wing_SEED_NNNN.toml. Wing i depends only on SEED
 and i, so a larger N keeps the first wings. The first line of each config lists its
-drawn parameters.
+drawn parameters. --layers draws the layer count from the given list instead of 24, 28,
+32 (everything else is drawn as without it).
 
 Design space: NACA 4- and 5-digit sections of 8-18 % thickness; aspect ratio 4-12;
 taper 0.2-1; leading-edge sweep 0-45 deg; dihedral -3..8 deg; twist -6..+4 deg (tip
@@ -58,7 +59,7 @@ def cranked_stations(root_chord, taper, semi_span, kink_fraction, kink_chord_sha
     ]
 
 
-def draw_wing(seed, index):
+def draw_wing(seed, index, layer_counts=(24, 28, 32)):
     rng = random.Random(f"mixmesh-robustness-{seed}-{index}")
     p = {}
     p["thickness"] = rng.randint(8, 18)
@@ -77,6 +78,8 @@ def draw_wing(seed, index):
     p["reynolds"] = math.exp(rng.uniform(math.log(3e6), math.log(6e7)))
     p["y_plus"] = rng.uniform(0.5, 2.0)
     p["layers"] = rng.choice([24, 28, 32])
+    if tuple(layer_counts) != (24, 28, 32):  # from a stream of its own: the other draws stay
+        p["layers"] = random.Random(f"mixmesh-robustness-{seed}-{index}-layers").choice(layer_counts)
     p["chordwise_cells"] = 2 * rng.randint(60, 100)
     p["spanwise_cells"] = rng.randint(24, 48)
     # Cranked-only draws are made for every wing so the stream stays aligned.
@@ -145,9 +148,28 @@ def config_text(seed, index, p, stations):
     return "\n".join(lines)
 
 
+def layer_list(text):
+    try:
+        counts = tuple(int(value) for value in text.split(","))
+    except ValueError:
+        counts = ()
+    if not counts or min(counts) < 1:
+        raise ValueError(f"--layers: '{text}' is not a comma-separated list of positive layer counts")
+    return counts
+
+
 def main(argv):
+    usage = "usage: random-wings.py N SEED OUTDIR [--layers L1,L2,...]\n"
+    layer_counts = (24, 28, 32)
+    if len(argv) == 6 and argv[4] == "--layers":
+        try:
+            layer_counts = layer_list(argv[5])
+        except ValueError as error:
+            sys.stderr.write(f"random-wings.py: {error}\n")
+            return 2
+        argv = argv[:4]
     if len(argv) != 4:
-        sys.stderr.write("usage: random-wings.py N SEED OUTDIR\n")
+        sys.stderr.write(usage)
         return 2
     try:
         count, seed = int(argv[1]), int(argv[2])
@@ -159,7 +181,7 @@ def main(argv):
         return 2
     os.makedirs(argv[3], exist_ok=True)
     for index in range(1, count + 1):
-        p, stations = draw_wing(seed, index)
+        p, stations = draw_wing(seed, index, layer_counts)
         path = os.path.join(argv[3], f"wing_{seed}_{index:04d}.toml")
         with open(path, "w") as f:
             f.write(config_text(seed, index, p, stations))

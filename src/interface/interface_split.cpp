@@ -28,6 +28,8 @@ using interface_detail::choose_stack;
 using interface_detail::FaceKey;
 using interface_detail::FaceNeighbours;
 using interface_detail::for_each_piece;
+using interface_detail::joined_stack;
+using interface_detail::meets_bounds;
 using interface_detail::same_type_neighbours;
 using interface_detail::SplitChoice;
 using interface_detail::unsplittable_cap_quality;
@@ -150,12 +152,54 @@ void choose_treatment(const MixedMesh& mesh, const OuterCells& outer, const CapR
   }
 }
 
+// A split whose pieces miss the bounds joins the split next to it along a column of
+// outer cells (`column_axis`) where the two split better together: the stacks chosen
+// one after another along the column can leave its last cells to a stack too thin for
+// its length. As long as that goes on helping.
+void join_splits(const MixedMesh& mesh, const OuterCells& outer, const std::vector<char>& split,
+                 const FaceNeighbours& neighbours, const InterfaceOptions& options,
+                 std::vector<SplitChoice>& choices) {
+  const CellType type = outer.type;
+  const int faces = descriptor(type).face_count;
+  constexpr std::size_t none = static_cast<std::size_t>(-1);
+  std::vector<std::size_t> owner(outer.outer_faces.size(), none);  // the item splitting each cell
+  for (std::size_t item = 0; item < choices.size(); ++item)
+    for (std::size_t cell : choices[item].cells) owner[cell] = item;
+  for (std::size_t item = 0; item < choices.size(); ++item) {
+    if (!split[outer.order[item]]) continue;
+    bool joined_one = true;
+    while (joined_one) {
+      joined_one = false;
+      SplitChoice& here = choices[item];
+      if (here.cells.empty() || here.quality.worst <= 0.0 || meets_bounds(here.quality, options)) break;
+      for (std::size_t level = 0; level < here.cells.size() && !joined_one; ++level)
+        for (int face = 0; face < faces && !joined_one; ++face) {
+          const Index neighbour =
+              neighbours[here.cells[level] * static_cast<std::size_t>(faces) + static_cast<std::size_t>(face)]
+                  .first;
+          if (neighbour < 0) continue;
+          const std::size_t other = owner[static_cast<std::size_t>(neighbour)];
+          if (other == none || other == item || choices[other].cells.empty()) continue;
+          std::optional<SplitChoice> joined =
+              joined_stack(mesh, type, here, choices[other], neighbours, outer.outer_faces, options);
+          if (!joined) continue;
+          for (std::size_t cell : choices[other].cells) owner[cell] = item;
+          choices[other].cells.clear();
+          here = std::move(*joined);
+          joined_one = true;
+        }
+    }
+  }
+}
+
 // The split points, found side by side: each search evaluates hundreds of piece shapes
 // on the thin cells of free edges, and depends on its own cell alone. Then each cell
-// goes to one split: a stack that reaches a cell another split took already is split
-// alone, and an outer cell a stack took is not split again (its choice is left empty).
+// goes to one split: a stack that reaches a cell another split took already is chosen
+// again round the cells taken (in a column of outer cells, as along a wake's last cell
+// at its tip edge, the stacks then follow one another), and an outer cell a stack took
+// is not split again (its choice is left empty; a capped one loses its cap).
 std::vector<SplitChoice> choose_splits(const MixedMesh& mesh, const OuterCells& outer,
-                                       const std::vector<char>& split, const std::vector<char>& capped,
+                                       const std::vector<char>& split, std::vector<char>& capped,
                                        const FaceConnectivity& connectivity, const InterfaceOptions& options,
                                        std::vector<char>& stacked) {
   const CellType type = outer.type;
@@ -181,12 +225,17 @@ std::vector<SplitChoice> choose_splits(const MixedMesh& mesh, const OuterCells& 
     }
     if (std::any_of(choice.cells.begin() + 1, choice.cells.end(),
                     [&](std::size_t below) { return stacked[below] != 0; })) {
-      choice =
-          choose_split(type, mesh.points, {{mesh.cell(type, cell), outer.outer_faces[cell], 0u}}, options);
-      choice.cells = {cell};
+      std::vector<char> barred = capped;
+      for (std::size_t other = 0; other < barred.size(); ++other)
+        if (stacked[other]) barred[other] = 2;
+      choice = choose_stack(mesh, type, cell, outer.outer_faces, barred, neighbours, options);
     }
     for (std::size_t taken : choice.cells) stacked[taken] = 1;
   }
+  join_splits(mesh, outer, split, neighbours, options, choices);
+  // A capped cell a column's stack took is split with it instead.
+  for (std::size_t cell = 0; cell < capped.size(); ++cell)
+    if (stacked[cell]) capped[cell] = 0;
   return choices;
 }
 
@@ -269,6 +318,7 @@ void replace_outer_cells(const MixedMesh& mesh, const OuterCells& outer, const C
       }
       continue;
     }
+    if (stacked[cell]) continue;  // a capped cell split in a column's stack
     for (int face = 0; face < descriptor(type).face_count; ++face) {
       if (!((outer_faces[cell] >> face) & 1u)) continue;
       const LocalFace& local = descriptor(type).faces[static_cast<std::size_t>(face)];

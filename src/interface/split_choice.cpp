@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <optional>
 
 #include "mixmesh/mesh/cell_geometry.hpp"
 
@@ -164,6 +165,10 @@ int opposite_face(CellType type, int face) {
 
 }  // namespace
 
+bool meets_bounds(const PieceQuality& quality, const InterfaceOptions& options) {
+  return shortfall(quality, options).met();
+}
+
 // The split of one cell or stack (`levels`, in mesh numbering). The search works on a
 // copy of the stack's nodes alone, numbered in the order of their numbers in the mesh
 // (the diagonal rule compares node numbers), with the candidate point after them, so
@@ -227,15 +232,91 @@ FaceNeighbours same_type_neighbours(const MixedMesh& mesh, CellType type,
   return neighbours;
 }
 
+std::optional<std::pair<int, int>> column_axis(const MixedMesh& mesh, CellType type, std::size_t cell,
+                                               unsigned outer_faces) {
+  if (type != CellType::hexahedron || outer_faces == 0u) return std::nullopt;
+  int largest = -1;
+  double largest_area = 0.0;
+  for (int face = 0; face < descriptor(type).face_count; ++face) {
+    Index corners[4];
+    const int count = face_nodes(mesh, {type, static_cast<Index>(cell), face}, corners);
+    const double area = face_area_vector(mesh.points, corners, count).norm();
+    if (area > largest_area) largest = face, largest_area = area;
+  }
+  const int across = largest >= 0 ? opposite_face(type, largest) : -1;
+  if (across < 0 || ((outer_faces >> largest) & 1u) || ((outer_faces >> across) & 1u)) return std::nullopt;
+  return std::pair{largest, across};
+}
+
 SplitChoice choose_stack(const MixedMesh& mesh, CellType type, std::size_t cell,
-                         const std::vector<unsigned>& outer_faces, const std::vector<char>& capped,
+                         const std::vector<unsigned>& outer_faces, const std::vector<char>& barred,
                          const FaceNeighbours& neighbours, const InterfaceOptions& options) {
-  std::vector<Level> levels{{mesh.cell(type, cell), outer_faces[cell], 0u}};
-  SplitChoice best = choose_split(type, mesh.points, levels, options);
+  const std::vector<Level> alone{{mesh.cell(type, cell), outer_faces[cell], 0u}};
+  SplitChoice best = choose_split(type, mesh.points, alone, options);
   best.cells = {cell};
   best.skipped_faces = {0u};
   Shortfall best_shortfall = shortfall(best.quality, options);
   if (best.quality.worst <= 0.0 || best_shortfall.met()) return best;
+  const PieceQuality single = best.quality;
+
+  // From the cell through the face `down` and on through the face opposite the one it
+  // entered by, while the cells are of the type, free, and do not face the far field
+  // across the face between them.
+  auto grow = [&](int down, bool column) {
+    std::vector<Level> levels = alone;
+    std::vector<std::size_t> cells{cell};
+    PieceQuality previous = single;
+    while (static_cast<int>(cells.size()) < options.stack_cells && down >= 0 &&
+           !((levels.back().outer_faces >> down) & 1u)) {
+      const auto [below, up] =
+          neighbours[cells.back() * static_cast<std::size_t>(descriptor(type).face_count) +
+                     static_cast<std::size_t>(down)];
+      if (below < 0) break;
+      // A capped cell joins only a column's stack, and only as a cell of the column.
+      const char bar = barred[static_cast<std::size_t>(below)];
+      if (bar == 2 || (bar == 1 && !(column && column_axis(mesh, type, static_cast<std::size_t>(below),
+                                                           outer_faces[static_cast<std::size_t>(below)]))))
+        break;
+      const unsigned below_outer = outer_faces[static_cast<std::size_t>(below)];
+      if ((below_outer >> up) & 1u) break;
+      levels.back().skipped_faces |= 1u << down;
+      levels.push_back({mesh.cell(type, static_cast<std::size_t>(below)), below_outer, 1u << up});
+      cells.push_back(static_cast<std::size_t>(below));
+      SplitChoice candidate = choose_split(type, mesh.points, levels, options);
+      const Shortfall candidate_shortfall = shortfall(candidate.quality, options);
+      if (misses_less(candidate_shortfall, best_shortfall)) {
+        best = candidate;
+        best_shortfall = candidate_shortfall;
+        best.cells = cells;
+        for (const Level& level : levels) best.skipped_faces.push_back(level.skipped_faces);
+      }
+      if (best_shortfall.met()) return;
+      // The angle falls as the stack grows until it is about as high as wide, and the
+      // pyramid on its inner quad stands up as the stack grows until it is about as high
+      // as long; past both, a higher stack only loses.
+      // (An inverted candidate neither ends the growth nor becomes the reference.)
+      const PieceQuality& here = candidate.quality;
+      if (here.worst <= 0.0) {
+        down = opposite_face(type, up);
+        continue;
+      }
+      const bool angle_falls = here.largest_dihedral < previous.largest_dihedral;
+      const bool pyramid_rises = here.worst_pyramid > 1.01 * previous.worst_pyramid &&
+                                 previous.worst_pyramid < options.stack_pyramid_quality;
+      if (!angle_falls && !pyramid_rises) return;
+      previous = here;
+      down = opposite_face(type, up);
+    }
+  };
+
+  // The stack grows across the cell's thin side, where its pieces are flat: under the
+  // largest outer quad (an outer layer cell's top), or both ways along a column of
+  // outer cells.
+  if (const auto axis = column_axis(mesh, type, cell, outer_faces[cell])) {
+    grow(axis->first, true);
+    if (!best_shortfall.met()) grow(axis->second, true);
+    return best;
+  }
   const CellDescriptor& shape = descriptor(type);
   int top = -1;
   double top_area = 0.0;
@@ -246,45 +327,55 @@ SplitChoice choose_stack(const MixedMesh& mesh, CellType type, std::size_t cell,
     const double area = face_area_vector(mesh.points, corners, count).norm();
     if (area > top_area) top = face, top_area = area;
   }
-  std::vector<std::size_t> cells{cell};
-  int down = opposite_face(type, top);
-  PieceQuality previous = best.quality;
-  while (static_cast<int>(cells.size()) < options.stack_cells && down >= 0 &&
-         !((levels.back().outer_faces >> down) & 1u)) {
-    const auto [below, up] = neighbours[cells.back() * static_cast<std::size_t>(shape.face_count) +
-                                        static_cast<std::size_t>(down)];
-    if (below < 0 || capped[static_cast<std::size_t>(below)]) break;
-    const unsigned below_outer = outer_faces[static_cast<std::size_t>(below)];
-    if ((below_outer >> up) & 1u) break;
-    levels.back().skipped_faces |= 1u << down;
-    levels.push_back({mesh.cell(type, static_cast<std::size_t>(below)), below_outer, 1u << up});
-    cells.push_back(static_cast<std::size_t>(below));
-    SplitChoice candidate = choose_split(type, mesh.points, levels, options);
-    const Shortfall candidate_shortfall = shortfall(candidate.quality, options);
-    if (misses_less(candidate_shortfall, best_shortfall)) {
-      best = candidate;
-      best_shortfall = candidate_shortfall;
-      best.cells = cells;
-      for (const Level& level : levels) best.skipped_faces.push_back(level.skipped_faces);
-    }
-    if (best_shortfall.met()) break;
-    // The angle falls as the stack grows until it is about as high as wide, and the
-    // pyramid on its inner quad stands up as the stack grows until it is about as high
-    // as long; past both, a higher stack only loses.
-    // (An inverted candidate neither ends the growth nor becomes the reference.)
-    const PieceQuality& here = candidate.quality;
-    if (here.worst <= 0.0) {
-      down = opposite_face(type, up);
-      continue;
-    }
-    const bool angle_falls = here.largest_dihedral < previous.largest_dihedral;
-    const bool pyramid_rises = here.worst_pyramid > 1.01 * previous.worst_pyramid &&
-                               previous.worst_pyramid < options.stack_pyramid_quality;
-    if (!angle_falls && !pyramid_rises) break;
-    previous = here;
-    down = opposite_face(type, up);
-  }
+  grow(opposite_face(type, top), false);
   return best;
+}
+
+std::optional<SplitChoice> joined_stack(const MixedMesh& mesh, CellType type, const SplitChoice& first,
+                                        const SplitChoice& second, const FaceNeighbours& neighbours,
+                                        const std::vector<unsigned>& outer_faces,
+                                        const InterfaceOptions& options) {
+  const int faces = descriptor(type).face_count;
+  std::vector<std::size_t> cells = first.cells;
+  cells.insert(cells.end(), second.cells.begin(), second.cells.end());
+  std::vector<unsigned> skipped;
+  for (const SplitChoice* part : {&first, &second})
+    for (std::size_t level = 0; level < part->cells.size(); ++level)
+      skipped.push_back(part->skipped_faces.empty() ? 0u : part->skipped_faces[level]);
+  // The faces between the two go, as between a stack's cells; none may face the far field.
+  bool touching = false;
+  for (std::size_t level = 0; level < first.cells.size(); ++level)
+    for (int face = 0; face < faces; ++face) {
+      const auto [neighbour, neighbour_face] =
+          neighbours[first.cells[level] * static_cast<std::size_t>(faces) + static_cast<std::size_t>(face)];
+      const auto there =
+          std::find(second.cells.begin(), second.cells.end(), static_cast<std::size_t>(neighbour));
+      if (neighbour < 0 || there == second.cells.end()) continue;
+      const auto here_axis = column_axis(mesh, type, first.cells[level], outer_faces[first.cells[level]]);
+      const auto there_axis = column_axis(mesh, type, static_cast<std::size_t>(neighbour),
+                                          outer_faces[static_cast<std::size_t>(neighbour)]);
+      if (!here_axis || !there_axis || (face != here_axis->first && face != here_axis->second) ||
+          (neighbour_face != there_axis->first && neighbour_face != there_axis->second))
+        return std::nullopt;
+      skipped[level] |= 1u << face;
+      skipped[first.cells.size() + static_cast<std::size_t>(there - second.cells.begin())] |=
+          1u << neighbour_face;
+      touching = true;
+    }
+  if (!touching) return std::nullopt;
+  std::vector<Level> levels;
+  for (std::size_t level = 0; level < cells.size(); ++level)
+    levels.push_back({mesh.cell(type, cells[level]), outer_faces[cells[level]], skipped[level]});
+  SplitChoice joined = choose_split(type, mesh.points, levels, options);
+  // Better than the two apart: than the one of them that misses the bounds more.
+  const Shortfall apart_first = shortfall(first.quality, options);
+  const Shortfall apart_second = shortfall(second.quality, options);
+  const Shortfall& apart = misses_less(apart_first, apart_second) ? apart_second : apart_first;
+  if (joined.quality.worst <= 0.0 || !misses_less(shortfall(joined.quality, options), apart))
+    return std::nullopt;
+  joined.cells = cells;
+  joined.skipped_faces = skipped;
+  return joined;
 }
 
 }  // namespace mixmesh::interface_detail

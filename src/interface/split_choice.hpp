@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstddef>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -53,8 +54,8 @@ void for_each_piece(CellType type, const std::vector<Vector3>& points, const Ind
 }
 
 // One cell of what is split about one point: the outer cell alone, or a stack of it and
-// the cells under it in its column (the faces between them skipped). Only the first
-// level has outer faces.
+// the cells under it in its column (the faces between them skipped). Cells under the
+// first face the far field only across their sides.
 struct Level {
   const Index* nodes = nullptr;
   unsigned outer_faces = 0u;
@@ -89,6 +90,9 @@ struct SplitChoice {
   std::vector<unsigned> skipped_faces;  // per cell: the faces inside the stack
 };
 
+// Whether a split's pieces meet options.stack_dihedral and options.stack_pyramid_quality.
+bool meets_bounds(const PieceQuality& quality, const InterfaceOptions& options);
+
 // The split of one cell or stack (`levels`, in mesh numbering).
 SplitChoice choose_split(CellType type, const std::vector<Vector3>& mesh_points,
                          const std::vector<Level>& mesh_levels, const InterfaceOptions& options);
@@ -99,6 +103,12 @@ using FaceNeighbours = std::vector<std::pair<Index, int>>;
 
 FaceNeighbours same_type_neighbours(const MixedMesh& mesh, CellType type,
                                     const FaceConnectivity& connectivity);
+
+// A hexahedron in a column of outer cells: its outer quads are all sides of its largest
+// face (a wake's last cell at its tip edge, whose end quad faces the far field). Then
+// its largest face and the one opposite, across which the column runs; else nullopt.
+std::optional<std::pair<int, int>> column_axis(const MixedMesh& mesh, CellType type, std::size_t cell,
+                                               unsigned outer_faces);
 
 // The split of an outer cell. An outer hexahedron (or prism) whose split about its
 // centre leaves a tetrahedron with a dihedral angle above options.stack_dihedral (a layer
@@ -111,9 +121,21 @@ FaceNeighbours same_type_neighbours(const MixedMesh& mesh, CellType type,
 // best one. The stack's side quads keep their pyramids, so neighbouring columns conform
 // whatever their own stack; a side quad that faces the far field (a column above a
 // neighbour whose growth stopped) gets its two tetrahedra as in a single cell. The top
-// is the largest outer quad; capped cells never join a stack.
+// is the largest outer quad; a hexahedron whose outer quads are all sides of its largest
+// face stacks either way across that face. `barred` per cell: 0 free, 1 capped (only a
+// column's stack takes it, and its cap with it), 2 in another split (never taken).
 SplitChoice choose_stack(const MixedMesh& mesh, CellType type, std::size_t cell,
-                         const std::vector<unsigned>& outer_faces, const std::vector<char>& capped,
+                         const std::vector<unsigned>& outer_faces, const std::vector<char>& barred,
                          const FaceNeighbours& neighbours, const InterfaceOptions& options);
+
+// Two splits as one, where `first` (whose cells start the stack) and `second` touch
+// only where columns of outer cells run on (`column_axis`), and together they split
+// better than apart. In a column of outer cells (a wake's last cell at its tip edge,
+// under many layers) the stacks chosen one after another can leave the column's last
+// cells to a stack too thin for its length.
+std::optional<SplitChoice> joined_stack(const MixedMesh& mesh, CellType type, const SplitChoice& first,
+                                        const SplitChoice& second, const FaceNeighbours& neighbours,
+                                        const std::vector<unsigned>& outer_faces,
+                                        const InterfaceOptions& options);
 
 }  // namespace mixmesh::interface_detail

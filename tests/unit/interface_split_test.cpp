@@ -229,6 +229,35 @@ TEST(InterfaceSplit, StacksThinnerThanAThousandthOfTheirLengthSplitAboveTheirMid
   expect_sound_split(input, stacked);
 }
 
+TEST(InterfaceSplit, AColumnOfCellsFacingTheFarFieldByTheirEndsStacksAlongTheColumn) {
+  // A wake's last cell at its tip edge under 12 layers growing by 1.25 from 0.6 mm: 4 m
+  // long, 4 cm wide, each layer's cell facing the far field by its end quad (x = 4)
+  // alone. Split one by one the pyramids on their long faces are as flat as the cells
+  // are thin (about 2e-4).
+  const double growth = 1.25;
+  const MixedMesh input = hexahedron_block(1, 1, 12, [&](const Vector3& p) {
+    return Vector3(4.0 * p.x(), 0.04 * p.y(), 0.0006 * (std::pow(growth, p.z()) - 1.0) / (growth - 1.0));
+  });
+  OuterLayer layer;
+  for (std::size_t cell = 0; cell < 12; ++cell)
+    for (int face = 0; face < hexahedron_descriptor.face_count; ++face) {
+      bool at_end = true;
+      for (int corner = 0; corner < 4; ++corner)
+        at_end =
+            at_end &&
+            input.points[static_cast<std::size_t>(input.cell(
+                             CellType::hexahedron, cell)[hexahedron_descriptor.faces[face].nodes[corner]])]
+                    .x() == 4.0;
+      if (at_end) layer.hexahedra.push_back({cell, face});
+    }
+  ASSERT_EQ(layer.hexahedra.size(), 12u);
+  const InterfaceResult split = split_interface(input, layer);
+  EXPECT_GE(worst_pyramid(split.mesh), 1e-3);
+  EXPECT_LE(largest_tetrahedron_dihedral(split.mesh), 170.0);
+  EXPECT_GT(split.stacks, 0u);
+  expect_sound_split(input, split);
+}
+
 TEST(InterfaceSplit, DiagonalRulesAreDeterministic) {
   // A rhombus top whose long diagonal a-c runs through the smallest top node a.
   MixedMesh input = hexahedron_block(1, 1, 1, [](const Vector3& p) { return p; });
