@@ -215,6 +215,7 @@ std::vector<SplitChoice> choose_splits(const MixedMesh& mesh, const OuterCells& 
                       }
                     });
   stacked.assign(outer.outer_faces.size(), 0);
+  std::vector<char> barred = capped;  // for stacks chosen again: 2 where another split took the cell
   for (std::size_t item = 0; item < outer.order.size(); ++item) {
     const std::size_t cell = outer.order[item];
     SplitChoice& choice = choices[item];
@@ -225,12 +226,9 @@ std::vector<SplitChoice> choose_splits(const MixedMesh& mesh, const OuterCells& 
     }
     if (std::any_of(choice.cells.begin() + 1, choice.cells.end(),
                     [&](std::size_t below) { return stacked[below] != 0; })) {
-      std::vector<char> barred = capped;
-      for (std::size_t other = 0; other < barred.size(); ++other)
-        if (stacked[other]) barred[other] = 2;
       choice = choose_stack(mesh, type, cell, outer.outer_faces, barred, neighbours, options);
     }
-    for (std::size_t taken : choice.cells) stacked[taken] = 1;
+    for (std::size_t taken : choice.cells) stacked[taken] = 1, barred[taken] = 2;
   }
   join_splits(mesh, outer, split, neighbours, options, choices);
   // A capped cell a column's stack took is split with it instead.
@@ -296,13 +294,14 @@ void replace_outer_cells(const MixedMesh& mesh, const OuterCells& outer, const C
     const std::size_t cell = outer.order[item];
     if (capped[cell]) continue;
     if (split[cell]) {
-      if (choices[item].cells.empty()) continue;  // in a stack split with the cell above
+      if (choices[item].cells.empty()) continue;  // in another cell's stack
       // The centre split unless no split point keeps every piece valid (thin cells with
       // a warped face): then, if allowed, the cell stays whole and its outer quads are
       // capped; if not, split_cell names the inverted piece.
       // So also a cell or stack whose best split leaves a pyramid under the floor, where
       // its outer cell's caps are better (InterfaceOptions::split_pyramid_floor); a
-      // stack's other cells stay whole.
+      // stack's other cells stay whole (caps_beat_split takes no stack whose other cells
+      // face the far field, so a column's cells, capped ones among them, never get here).
       const SplitChoice& choice = choices[item];
       if ((choice.quality.worst > 0.0 &&
            !caps_beat_split(type, mesh, outer_faces, choice, capped_edges, options)) ||

@@ -236,15 +236,19 @@ std::optional<std::pair<int, int>> column_axis(const MixedMesh& mesh, CellType t
                                                unsigned outer_faces) {
   if (type != CellType::hexahedron || outer_faces == 0u) return std::nullopt;
   int largest = -1;
-  double largest_area = 0.0;
+  double largest_area = 0.0, largest_outer_area = 0.0;
   for (int face = 0; face < descriptor(type).face_count; ++face) {
     Index corners[4];
     const int count = face_nodes(mesh, {type, static_cast<Index>(cell), face}, corners);
     const double area = face_area_vector(mesh.points, corners, count).norm();
     if (area > largest_area) largest = face, largest_area = area;
+    if ((outer_faces >> face) & 1u) largest_outer_area = std::max(largest_outer_area, area);
   }
   const int across = largest >= 0 ? opposite_face(type, largest) : -1;
   if (across < 0 || ((outer_faces >> largest) & 1u) || ((outer_faces >> across) & 1u)) return std::nullopt;
+  // Ends, not sides: an outermost cell taller than wide has its top beside its largest
+  // face too, and is no column.
+  if (largest_outer_area > 0.25 * largest_area) return std::nullopt;
   return std::pair{largest, across};
 }
 
@@ -272,11 +276,15 @@ SplitChoice choose_stack(const MixedMesh& mesh, CellType type, std::size_t cell,
           neighbours[cells.back() * static_cast<std::size_t>(descriptor(type).face_count) +
                      static_cast<std::size_t>(down)];
       if (below < 0) break;
-      // A capped cell joins only a column's stack, and only as a cell of the column.
+      // A capped cell joins only a column's stack, and only as a cell of the column: entered
+      // across its own column's axis.
       const char bar = barred[static_cast<std::size_t>(below)];
-      if (bar == 2 || (bar == 1 && !(column && column_axis(mesh, type, static_cast<std::size_t>(below),
-                                                           outer_faces[static_cast<std::size_t>(below)]))))
-        break;
+      if (bar == 2) break;
+      if (bar == 1) {
+        const auto axis = column_axis(mesh, type, static_cast<std::size_t>(below),
+                                      outer_faces[static_cast<std::size_t>(below)]);
+        if (!column || !axis || (up != axis->first && up != axis->second)) break;
+      }
       const unsigned below_outer = outer_faces[static_cast<std::size_t>(below)];
       if ((below_outer >> up) & 1u) break;
       levels.back().skipped_faces |= 1u << down;
@@ -336,6 +344,8 @@ std::optional<SplitChoice> joined_stack(const MixedMesh& mesh, CellType type, co
                                         const std::vector<unsigned>& outer_faces,
                                         const InterfaceOptions& options) {
   const int faces = descriptor(type).face_count;
+  if (first.cells.size() + second.cells.size() > static_cast<std::size_t>(std::max(options.stack_cells, 1)))
+    return std::nullopt;
   std::vector<std::size_t> cells = first.cells;
   cells.insert(cells.end(), second.cells.begin(), second.cells.end());
   std::vector<unsigned> skipped;
@@ -348,9 +358,10 @@ std::optional<SplitChoice> joined_stack(const MixedMesh& mesh, CellType type, co
     for (int face = 0; face < faces; ++face) {
       const auto [neighbour, neighbour_face] =
           neighbours[first.cells[level] * static_cast<std::size_t>(faces) + static_cast<std::size_t>(face)];
+      if (neighbour < 0) continue;
       const auto there =
           std::find(second.cells.begin(), second.cells.end(), static_cast<std::size_t>(neighbour));
-      if (neighbour < 0 || there == second.cells.end()) continue;
+      if (there == second.cells.end()) continue;
       const auto here_axis = column_axis(mesh, type, first.cells[level], outer_faces[first.cells[level]]);
       const auto there_axis = column_axis(mesh, type, static_cast<std::size_t>(neighbour),
                                           outer_faces[static_cast<std::size_t>(neighbour)]);

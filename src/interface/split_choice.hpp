@@ -54,8 +54,8 @@ void for_each_piece(CellType type, const std::vector<Vector3>& points, const Ind
 }
 
 // One cell of what is split about one point: the outer cell alone, or a stack of it and
-// the cells under it in its column (the faces between them skipped). Cells under the
-// first face the far field only across their sides.
+// the cells under it in its column (the faces between them skipped). In a column of
+// outer cells (`column_axis`) every level may face the far field, by its ends.
 struct Level {
   const Index* nodes = nullptr;
   unsigned outer_faces = 0u;
@@ -81,7 +81,7 @@ struct PieceQuality {
 // Where and how a cell is split: the split point, the outer quads cut along the other
 // diagonal than the rule's (bits as in for_each_piece), the quality of its pieces (worst
 // not positive: no split makes every piece valid), and the cells split about the point
-// (the outer cell, then any under it in a stack).
+// (the outer cell, then the others of its stack: under it, or along its column).
 struct SplitChoice {
   Vector3 point = Vector3::Zero();
   unsigned flipped = 0u;
@@ -104,9 +104,10 @@ using FaceNeighbours = std::vector<std::pair<Index, int>>;
 FaceNeighbours same_type_neighbours(const MixedMesh& mesh, CellType type,
                                     const FaceConnectivity& connectivity);
 
-// A hexahedron in a column of outer cells: its outer quads are all sides of its largest
-// face (a wake's last cell at its tip edge, whose end quad faces the far field). Then
-// its largest face and the one opposite, across which the column runs; else nullopt.
+// A hexahedron in a column of outer cells: its outer quads are ends, each at most a
+// quarter of its largest face and all sides of it (a wake's last cell at its tip edge,
+// whose end quad faces the far field). Then its largest face and the one opposite,
+// across which the column runs; else nullopt.
 std::optional<std::pair<int, int>> column_axis(const MixedMesh& mesh, CellType type, std::size_t cell,
                                                unsigned outer_faces);
 
@@ -121,18 +122,19 @@ std::optional<std::pair<int, int>> column_axis(const MixedMesh& mesh, CellType t
 // best one. The stack's side quads keep their pyramids, so neighbouring columns conform
 // whatever their own stack; a side quad that faces the far field (a column above a
 // neighbour whose growth stopped) gets its two tetrahedra as in a single cell. The top
-// is the largest outer quad; a hexahedron whose outer quads are all sides of its largest
-// face stacks either way across that face. `barred` per cell: 0 free, 1 capped (only a
+// is the largest outer quad; a hexahedron in a column of outer cells (`column_axis`)
+// stacks either way along the column, whose last cell may face the far field by its top
+// as well. `barred` per cell: 0 free, 1 capped (only a
 // column's stack takes it, and its cap with it), 2 in another split (never taken).
 SplitChoice choose_stack(const MixedMesh& mesh, CellType type, std::size_t cell,
                          const std::vector<unsigned>& outer_faces, const std::vector<char>& barred,
                          const FaceNeighbours& neighbours, const InterfaceOptions& options);
 
 // Two splits as one, where `first` (whose cells start the stack) and `second` touch
-// only where columns of outer cells run on (`column_axis`), and together they split
-// better than apart. In a column of outer cells (a wake's last cell at its tip edge,
-// under many layers) the stacks chosen one after another can leave the column's last
-// cells to a stack too thin for its length.
+// only where columns of outer cells run on (`column_axis`), hold at most
+// options.stack_cells cells together, and split better together than apart. In a column of outer cells (a
+// wake's last cell at its tip edge, under many layers) the stacks chosen one after another can leave the
+// column's last cells to a stack too thin for its length.
 std::optional<SplitChoice> joined_stack(const MixedMesh& mesh, CellType type, const SplitChoice& first,
                                         const SplitChoice& second, const FaceNeighbours& neighbours,
                                         const std::vector<unsigned>& outer_faces,

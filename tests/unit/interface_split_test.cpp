@@ -229,33 +229,79 @@ TEST(InterfaceSplit, StacksThinnerThanAThousandthOfTheirLengthSplitAboveTheirMid
   expect_sound_split(input, stacked);
 }
 
-TEST(InterfaceSplit, AColumnOfCellsFacingTheFarFieldByTheirEndsStacksAlongTheColumn) {
-  // A wake's last cell at its tip edge under 12 layers growing by 1.25 from 0.6 mm: 4 m
-  // long, 4 cm wide, each layer's cell facing the far field by its end quad (x = 4)
-  // alone. Split one by one the pyramids on their long faces are as flat as the cells
-  // are thin (about 2e-4).
+// A wake's last cell at its tip edge under 12 layers growing by 1.25 from 0.6 mm: 4 m
+// long, 4 cm wide, each layer's cell facing the far field by its end quad (x = 4) alone.
+MixedMesh end_column() {
   const double growth = 1.25;
-  const MixedMesh input = hexahedron_block(1, 1, 12, [&](const Vector3& p) {
+  return hexahedron_block(1, 1, 12, [&](const Vector3& p) {
     return Vector3(4.0 * p.x(), 0.04 * p.y(), 0.0006 * (std::pow(growth, p.z()) - 1.0) / (growth - 1.0));
   });
+}
+
+OuterLayer column_ends(const MixedMesh& column) {
   OuterLayer layer;
-  for (std::size_t cell = 0; cell < 12; ++cell)
+  for (std::size_t cell = 0; cell < column.cell_count(CellType::hexahedron); ++cell)
     for (int face = 0; face < hexahedron_descriptor.face_count; ++face) {
       bool at_end = true;
       for (int corner = 0; corner < 4; ++corner)
         at_end =
             at_end &&
-            input.points[static_cast<std::size_t>(input.cell(
-                             CellType::hexahedron, cell)[hexahedron_descriptor.faces[face].nodes[corner]])]
+            column.points[static_cast<std::size_t>(column.cell(
+                              CellType::hexahedron, cell)[hexahedron_descriptor.faces[face].nodes[corner]])]
                     .x() == 4.0;
       if (at_end) layer.hexahedra.push_back({cell, face});
     }
+  return layer;
+}
+
+TEST(InterfaceSplit, AColumnOfCellsFacingTheFarFieldByTheirEndsStacksAlongTheColumn) {
+  // Split one by one the pyramids on their long faces are as flat as the cells are thin
+  // (about 2e-4).
+  const MixedMesh input = end_column();
+  const OuterLayer layer = column_ends(input);
   ASSERT_EQ(layer.hexahedra.size(), 12u);
   const InterfaceResult split = split_interface(input, layer);
   EXPECT_GE(worst_pyramid(split.mesh), 1e-3);
   EXPECT_LE(largest_tetrahedron_dihedral(split.mesh), 170.0);
   EXPECT_GT(split.stacks, 0u);
   expect_sound_split(input, split);
+
+  // With stacks of one cell the column splits (or caps, outside it) cell by cell, as
+  // flat as that is.
+  InterfaceOptions alone;
+  alone.stack_cells = 1;
+  const InterfaceResult one_by_one = split_interface(input, layer, alone);
+  EXPECT_EQ(one_by_one.stacks, 0u);
+  EXPECT_LT(worst_pyramid(one_by_one.mesh), 1e-3);
+  EXPECT_EQ(invalid_cells(one_by_one.mesh), 0);
+  EXPECT_TRUE(match_faces(one_by_one.mesh).conforming());
+}
+
+TEST(InterfaceSplit, AColumnsStacksTakeItsCappedCellsWithoutTheirCaps) {
+  // The end quads of the upper seven cells are hull_side, as the end row's of a wake.
+  // The lowest of them touches the split cells' end quads and is split too; the six
+  // above are capped, and the stacks from below climb into them.
+  MixedMesh input = end_column();
+  const OuterLayer layer = column_ends(input);
+  const int hull_side = input.marker("hull_side");
+  const double fifth_layer = input.points[20].z();  // node (0, 0, 5)
+  for (std::size_t face = 0; face < input.face_count(FaceType::quad); ++face) {
+    const Index* nodes = input.face(FaceType::quad, face);
+    bool upper_end = true;
+    for (int corner = 0; corner < 4; ++corner)
+      upper_end = upper_end && input.points[static_cast<std::size_t>(nodes[corner])].x() == 4.0 &&
+                  input.points[static_cast<std::size_t>(nodes[corner])].z() >= fifth_layer;
+    if (upper_end) input.faces(FaceType::quad).markers[face] = hull_side;
+  }
+  const InterfaceResult split = split_interface(input, layer);
+  EXPECT_GE(worst_pyramid(split.mesh), 1e-3);
+  EXPECT_GT(split.stacked_cells, 6u);  // more than the six uncapped cells
+  expect_sound_split(input, split);
+  // Without the stacks the six capped cells keep their caps.
+  InterfaceOptions alone;
+  alone.stack_cells = 1;
+  EXPECT_GT(split_interface(input, layer, alone).mesh.points.size(),
+            input.points.size() + split_interface(input, layer, alone).centres.size());
 }
 
 TEST(InterfaceSplit, DiagonalRulesAreDeterministic) {
