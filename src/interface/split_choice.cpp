@@ -232,24 +232,49 @@ FaceNeighbours same_type_neighbours(const MixedMesh& mesh, CellType type,
   return neighbours;
 }
 
-std::optional<std::pair<int, int>> column_axis(const MixedMesh& mesh, CellType type, std::size_t cell,
-                                               unsigned outer_faces) {
-  if (type != CellType::hexahedron || outer_faces == 0u) return std::nullopt;
-  int largest = -1;
-  double largest_area = 0.0, largest_outer_area = 0.0;
+namespace {
+
+// The area of each face of a cell, in its descriptor's order.
+std::vector<double> face_areas(const MixedMesh& mesh, CellType type, std::size_t cell) {
+  std::vector<double> areas(static_cast<std::size_t>(descriptor(type).face_count));
   for (int face = 0; face < descriptor(type).face_count; ++face) {
     Index corners[4];
     const int count = face_nodes(mesh, {type, static_cast<Index>(cell), face}, corners);
-    const double area = face_area_vector(mesh.points, corners, count).norm();
-    if (area > largest_area) largest = face, largest_area = area;
-    if ((outer_faces >> face) & 1u) largest_outer_area = std::max(largest_outer_area, area);
+    areas[static_cast<std::size_t>(face)] = face_area_vector(mesh.points, corners, count).norm();
   }
+  return areas;
+}
+
+// The largest face among those whose bit is set in `faces` (all: ~0u), or -1.
+int largest_face(const std::vector<double>& areas, unsigned faces) {
+  int largest = -1;
+  for (int face = 0; face < static_cast<int>(areas.size()); ++face)
+    if (((faces >> face) & 1u) &&
+        (largest < 0 || areas[static_cast<std::size_t>(face)] > areas[static_cast<std::size_t>(largest)]))
+      largest = face;
+  return largest;
+}
+
+std::optional<std::pair<int, int>> column_axis(CellType type, const std::vector<double>& areas,
+                                               unsigned outer_faces) {
+  if (type != CellType::hexahedron || outer_faces == 0u) return std::nullopt;
+  const int largest = largest_face(areas, ~0u);
   const int across = largest >= 0 ? opposite_face(type, largest) : -1;
   if (across < 0 || ((outer_faces >> largest) & 1u) || ((outer_faces >> across) & 1u)) return std::nullopt;
   // Ends, not sides: an outermost cell taller than wide has its top beside its largest
   // face too, and is no column.
-  if (largest_outer_area > 0.25 * largest_area) return std::nullopt;
+  const int largest_outer = largest_face(areas, outer_faces);
+  if (areas[static_cast<std::size_t>(largest_outer)] > 0.25 * areas[static_cast<std::size_t>(largest)])
+    return std::nullopt;
   return std::pair{largest, across};
+}
+
+}  // namespace
+
+std::optional<std::pair<int, int>> column_axis(const MixedMesh& mesh, CellType type, std::size_t cell,
+                                               unsigned outer_faces) {
+  if (type != CellType::hexahedron || outer_faces == 0u) return std::nullopt;
+  return column_axis(type, face_areas(mesh, type, cell), outer_faces);
 }
 
 SplitChoice choose_stack(const MixedMesh& mesh, CellType type, std::size_t cell,
@@ -320,22 +345,13 @@ SplitChoice choose_stack(const MixedMesh& mesh, CellType type, std::size_t cell,
   // The stack grows across the cell's thin side, where its pieces are flat: under the
   // largest outer quad (an outer layer cell's top), or both ways along a column of
   // outer cells.
-  if (const auto axis = column_axis(mesh, type, cell, outer_faces[cell])) {
+  const std::vector<double> areas = face_areas(mesh, type, cell);
+  if (const auto axis = column_axis(type, areas, outer_faces[cell])) {
     grow(axis->first, true);
     if (!best_shortfall.met()) grow(axis->second, true);
     return best;
   }
-  const CellDescriptor& shape = descriptor(type);
-  int top = -1;
-  double top_area = 0.0;
-  for (int face = 0; face < shape.face_count; ++face) {
-    if (!((outer_faces[cell] >> face) & 1u)) continue;
-    Index corners[4];
-    const int count = face_nodes(mesh, {type, static_cast<Index>(cell), face}, corners);
-    const double area = face_area_vector(mesh.points, corners, count).norm();
-    if (area > top_area) top = face, top_area = area;
-  }
-  grow(opposite_face(type, top), false);
+  grow(opposite_face(type, largest_face(areas, outer_faces[cell])), false);
   return best;
 }
 
