@@ -4,11 +4,13 @@
 # (../shared/tools/check_mesh.py, with OpenFOAM checkMesh), then one line per wing and a
 # summary against the issue's quality floors.
 #
-#   scripts/robustness.sh N SEED [OUTDIR] [-j J] [--layers L1,L2,...] [--report-only | --validity-only]
+#   scripts/robustness.sh N SEED [OUTDIR] [-j J] [--layers L1,L2,...] [--space ordinary|wide]
+#                         [--report-only | --validity-only]
 #   MIXMESH=/tmp/mixmesh-baseline scripts/robustness.sh 24 1 /tmp/robust -j 2
 #
 # --layers draws each wing's layer count from the list (default 24, 28, 32) and leaves
-# its other parameters as they are.
+# its other parameters as they are; --space wide draws the wider design space of
+# scripts/random-wings.py instead (finer surfaces, 16-48 layers: minutes per wing).
 # Builds nothing: runs $MIXMESH (default build/bin/mixmesh). OUTDIR (default
 # build/robustness/seed-SEED) gets configs/ and one folder per wing with log.txt (generate),
 # report.toml, the .vtu, check.json, check.log and seconds.txt; summary.txt repeats the table.
@@ -24,10 +26,11 @@ max_sliver_percent=0.01   # ... and at most this percentage of tetrahedra above 
 min_scaled_jacobian=1e-3  # pyramids and prisms
 
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
-usage="usage: scripts/robustness.sh N SEED [OUTDIR] [-j J] [--layers L1,L2,...] [--report-only | --validity-only]"
+usage="usage: scripts/robustness.sh N SEED [OUTDIR] [-j J] [--layers L1,L2,...] [--space ordinary|wide] [--report-only | --validity-only]"
 positional=()
 jobs=1
 layers=()
+space=()
 report_only=0
 validity_only=0
 while [ $# -gt 0 ]; do
@@ -35,6 +38,7 @@ while [ $# -gt 0 ]; do
     -j) jobs=${2:?$usage}; shift 2 ;;
     -j*) jobs=${1#-j}; shift ;;
     --layers) layers=(--layers "${2:?$usage}"); shift 2 ;;
+    --space) space=(--space "${2:?$usage}"); shift 2 ;;
     --report-only) report_only=1; shift ;;
     --validity-only) validity_only=1; shift ;;
     -h|--help) echo "$usage"; exit 0 ;;
@@ -55,7 +59,8 @@ program=$(cd "$(dirname "$program")" && pwd)/$(basename "$program")
 
 mkdir -p "$outdir/configs"
 outdir=$(cd "$outdir" && pwd)
-"$python" "$root/scripts/random-wings.py" "$count" "$seed" "$outdir/configs" "${layers[@]}" > "$outdir/configs.txt"
+"$python" "$root/scripts/random-wings.py" "$count" "$seed" "$outdir/configs" "${layers[@]}" "${space[@]}" > \
+  "$outdir/configs.txt"
 
 # One wing: generate, then check the mesh if there is one. Runs in its own folder.
 run_wing() {

@@ -14,3 +14,9 @@ add_test(NAME robustness_wings_floors
          COMMAND bash ${PROJECT_SOURCE_DIR}/scripts/robustness.sh 48 3 ${robustness_output}/seed-3 -j 2)
 set_tests_properties(robustness_wings_floors PROPERTIES LABELS "regression;heavy"
                      ENVIRONMENT "MIXMESH=$<TARGET_FILE:mixmesh-cli>")
+
+# Quick: the generator's configs (both design spaces) are accepted and their surfaces build.
+add_test(NAME robustness_configs_accepted
+         COMMAND bash ${CMAKE_CURRENT_LIST_DIR}/robustness/configs_accepted.sh $<TARGET_FILE:mixmesh-cli>
+                 ${MIXMESH_PYTHON} ${robustness_output}/configs-accepted 40 7)
+set_tests_properties(robustness_configs_accepted PROPERTIES LABELS "regression")
