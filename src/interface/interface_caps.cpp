@@ -68,12 +68,15 @@ bool raise_cap_apex(std::vector<Vector3>& points, const Index* pyramid, const Ve
 }
 
 // What a cap on a quad (corners outward from its cell) stands on: the quad's middle,
-// its unit normal, its shortest and longest edge and its longer diagonal.
+// its unit normal, its shortest and longest edge, its width (its area over its longest
+// edge, where that is less than the shortest edge: a sheared quad is narrower than its
+// short edges) and its longer diagonal.
 struct CapBase {
   Vector3 middle = Vector3::Zero();
   Vector3 normal = Vector3::Zero();
   double shortest = std::numeric_limits<double>::infinity();
   double longest = 0.0;
+  double width = 0.0;
   double diagonal = 0.0;
 };
 
@@ -86,7 +89,9 @@ CapBase cap_base(const std::vector<Vector3>& points, const Index* corners) {
     base.shortest = std::min(base.shortest, edge);
     base.longest = std::max(base.longest, edge);
   }
-  base.normal = face_area_vector(points, corners, 4).normalized();
+  const Vector3 area = face_area_vector(points, corners, 4);
+  base.normal = area.normalized();
+  base.width = std::min(base.shortest, area.norm() / base.longest);
   base.diagonal = std::max((at(2) - at(0)).norm(), (at(3) - at(1)).norm());
   return base;
 }
@@ -145,8 +150,14 @@ void cap_cell(CellType type, std::size_t cell, const Index* nodes, unsigned oute
     // edge. The caps of cells that could not be split (twisted cells at a tip's trailing
     // edge, in a concave corner of the hull) keep their low height.
     const double reach = split_tried ? shortest : std::max(shortest, minimum_cap_reach * longest);
+    // The lowest a tall cap may come down to is set by its quad's width: the wake's
+    // quads are sheared where its lines' nodes are staggered (behind a cranked trailing
+    // edge, 3.5 mm wide with 14 mm short edges), and from the short edges such a cap
+    // could not come down at all, so it was never tested against the hull; over a fold
+    // it leant across its neighbour's cap.
+    const double width = base.width;
     const double lowest_reach =
-        split_tried ? shortest : std::max(shortest, std::min(minimum_cap_reach * longest, 2.0 * shortest));
+        split_tried ? shortest : std::max(width, std::min(minimum_cap_reach * longest, 2.0 * width));
     const Vector3& quad_normal = base.normal;
     Vector3 normal = quad_normal;
     const int plane_edge = rules ? rules->plane_edge(corners) : -1;

@@ -158,6 +158,13 @@ void lower_layers(const SurfaceMesh& surface, const GenerateOptions& options, co
         {1, march_options.spacing.layer_count >> (attempt + 1), layer_below(height_share * nearest_node)});
     stops.push_back(stop);
   }
+  // A crossing as high above the wall as the whole stack is thick (in the caps over a
+  // wake's thickened layers) gets stops at the last layer, which change nothing: the
+  // attempts would repeat the same hull, minutes each on a large wing.
+  const int layer_count = march_options.spacing.layer_count;
+  if (std::all_of(stops.begin(), stops.end(), [&](const ForcedStop& stop) { return stop.layer >= layer_count; }))
+    throw Error(reason + ", higher above the wall than the layers' stack is thick there, so lowering the " +
+                "layers cannot mend it" + layer_hint(attempts.layers.report));
   march_options.forced_stops.insert(march_options.forced_stops.end(), stops.begin(), stops.end());
   log.warning(reason + "; the layers within " + std::to_string(stops.front().radius) + " m of " +
               std::to_string(stops.size()) + (stops.size() == 1 ? " place" : " places") + " stop by layer " +

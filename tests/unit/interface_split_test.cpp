@@ -653,19 +653,20 @@ void for_each_new_apex(const InterfaceResult& result, std::size_t input_points, 
   }
 }
 
-// A block of 8 × 5 × 1 cells of `size` (x, y, 1) whose tops are raised by `slope`
-// times the distance from x = 4 size.x (a valley there), the tops of cells 2–5 in x
-// marked, so the cells 3 and 4 of rows 1–3 are capped (rows 0 and 4 reach the footprint). Returns each cap's
+// A block of 8 × 5 × 1 cells of `size` (x, y, 1), each node moved `shear` x along y,
+// whose tops are raised by `slope` times the distance from x = 4 size.x (a valley
+// there), the tops of cells 2–5 in x marked, so the cells 3 and 4 of rows 1–3 are capped (rows 0 and 4 reach the footprint). Returns each cap's
 // height over its quad's middle, by that middle.
 std::vector<std::pair<Vector3, double>> cap_heights(const Vector3& size, double slope,
-                                                    InterfaceResult& result) {
+                                                    InterfaceResult& result, double shear = 0.0) {
   // The tops' rise at x: slope times the distance from x = 4 size.x.
   const auto rise = [&](double x) {
     const double from_middle = x - 4.0 * size.x();
     return slope * std::abs(from_middle);
   };
   MixedMesh input = hexahedron_block(8, 5, 1, [&](const Vector3& point) {
-    return Vector3(size.x() * point.x(), size.y() * point.y(), point.z() + rise(size.x() * point.x()));
+    return Vector3(size.x() * point.x(), size.y() * point.y() + shear * size.x() * point.x(),
+                   point.z() + rise(size.x() * point.x()));
   });
   const int marked = input.marker("hull_side");
   for (std::size_t face = 0; face < input.face_count(FaceType::quad); ++face) {
@@ -705,6 +706,28 @@ TEST(InterfaceSplit, TallCapsComeDownOnlyWhereTheyCrossTheHull) {
     const double shortest = std::sqrt(1.0 + slope * slope);
     for (const auto& [middle, height] : heights)
       EXPECT_NEAR(height, slope == 0.0 ? 2.0 : shortest, 1e-9)
+          << "cap over (" << middle.x() << ", " << middle.y() << ")";
+  }
+}
+
+// The same on quads sheared along their length (each node moved 4 x along y), as a
+// wake's are where its lines' nodes are staggered: the quads are still 1 wide, but
+// their short edges are 4.1 long, and with the lowest cap taken from those a cap could
+// not come down at all, so the caps either side of the valley were never tested against
+// the hull and crossed each other. The lowest comes from the quad's width (its area over
+// its longest edge), so they come down as on the unsheared block.
+TEST(InterfaceSplit, TallCapsOnShearedQuadsComeDownWhereTheyCrossTheHull) {
+  for (const double slope : {0.0, 0.5}) {
+    InterfaceResult result;
+    const auto heights = cap_heights(Vector3(1, 10, 1), slope, result, 4.0);
+    ASSERT_EQ(result.capped_cells, 6u);
+    ASSERT_EQ(heights.size(), 6u);
+    EXPECT_EQ(result.lowered_caps, slope > 0.0 ? 6u : 0u);
+    EXPECT_EQ(invalid_cells(result.mesh), 0);
+    const double short_edge = std::sqrt(1.0 + 16.0 + slope * slope);
+    const double width = std::sqrt(1.0 + slope * slope);  // area over the long edge
+    for (const auto& [middle, height] : heights)
+      EXPECT_NEAR(height, slope == 0.0 ? 0.5 * short_edge : width, 1e-9)
           << "cap over (" << middle.x() << ", " << middle.y() << ")";
   }
 }
