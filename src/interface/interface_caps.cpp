@@ -155,9 +155,8 @@ void cap_cell(CellType type, std::size_t cell, const Index* nodes, unsigned oute
     // edge, 3.5 mm wide with 14 mm short edges), and from the short edges such a cap
     // could not come down at all, so it was never tested against the hull; over a fold
     // it leant across its neighbour's cap.
-    const double width = base.width;
     const double lowest_reach =
-        split_tried ? shortest : std::max(width, std::min(minimum_cap_reach * longest, 2.0 * width));
+        split_tried ? shortest : std::max(base.width, std::min(minimum_cap_reach * longest, 2.0 * base.width));
     const Vector3& quad_normal = base.normal;
     Vector3 normal = quad_normal;
     const int plane_edge = rules ? rules->plane_edge(corners) : -1;

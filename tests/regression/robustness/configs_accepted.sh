@@ -10,7 +10,7 @@ rm -rf "$outdir"
 mkdir -p "$outdir"
 for space in ordinary wide; do
   "$python" "$root/scripts/random-wings.py" "$count" "$seed" "$outdir/$space" --space "$space" > "$outdir/$space.txt"
-  [ "$(wc -l < "$outdir/$space.txt")" -eq "$count" ] || { echo "configs_accepted: $space wrote no $count configs" >&2; exit 1; }
+  [ "$(wc -l < "$outdir/$space.txt")" -eq "$count" ] || { echo "configs_accepted: the $space space did not write $count configs" >&2; exit 1; }
   while read -r config; do
     "$program" surface --quiet "$config" -o "${config%.toml}.vtu"
   done < "$outdir/$space.txt"
