@@ -245,7 +245,11 @@ void align_neighbouring_caps(MixedMesh& mesh, std::vector<TallCap>& caps, const 
     }
     for (std::size_t cap = 0; cap < caps.size(); ++cap) {
       TallCap& tall = caps[cap];
-      if (tall.on_plane) continue;  // its apex stays in the plane
+      // Its apex stays in the plane. A standard cap (tall only because its sheared quad
+      // is narrower than its short edges) stays on its own normal as it did before it
+      // could come down: turned with its neighbours over a rounded tip's trailing edge,
+      // such caps left a hull TetGen could not recover (random wing 6 of seed 93).
+      if (tall.on_plane || tall.standard) continue;
       Vector3& apex = mesh.points[static_cast<std::size_t>(tall.apex)];
       const Vector3 before = apex;
       apex = tall.middle + tall.height * direction[cap];
@@ -274,7 +278,7 @@ std::size_t lower_crossing_caps(MixedMesh& mesh, const std::vector<std::array<In
   if (plane) {
     const Vector3 normal = plane->normal.normalized();
     for (TallCap& tall : caps) {
-      if (tall.on_plane) continue;
+      if (tall.on_plane || tall.standard) continue;
       const double side = (tall.middle - plane->point).dot(normal) < 0.0 ? -1.0 : 1.0;
       const double towards = -side * tall.direction.dot(normal);
       if (!(towards > 0.0)) continue;

@@ -22,6 +22,7 @@ struct TallCap {
   std::size_t first_hull_triangle = 0;  // its hull triangles follow in order
   std::size_t hull_triangles = 4;       // 3 when it leans on the symmetry plane
   bool on_plane = false;                // its apex in the symmetry plane (kept there)
+  bool standard = false;                // tall only by its quad's width (kept on its normal)
 };
 
 // The symmetry plane: a point in it and its normal (any length, either side).

@@ -155,8 +155,12 @@ void cap_cell(CellType type, std::size_t cell, const Index* nodes, unsigned oute
     // edge, 3.5 mm wide with 14 mm short edges), and from the short edges such a cap
     // could not come down at all, so it was never tested against the hull; over a fold
     // it leant across its neighbour's cap.
-    const double lowest_reach =
-        split_tried ? shortest : std::max(base.width, std::min(minimum_cap_reach * longest, 2.0 * base.width));
+    // A cap that its shortest edge would keep where it stands is tall only by its
+    // sheared quad's width: a standard cap, which keeps its own normal (cap_clearance).
+    const auto lowest_from = [&](double edge) {
+      return split_tried ? shortest : std::max(edge, std::min(minimum_cap_reach * longest, 2.0 * edge));
+    };
+    const double lowest_reach = lowest_from(base.width), edge_lowest_reach = lowest_from(shortest);
     const Vector3& quad_normal = base.normal;
     Vector3 normal = quad_normal;
     const int plane_edge = rules ? rules->plane_edge(corners) : -1;
@@ -216,7 +220,8 @@ void cap_cell(CellType type, std::size_t cell, const Index* nodes, unsigned oute
                             {corners[0], corners[1], corners[2], corners[3], apex},
                             result.hull.size(),
                             leans ? 3u : 4u,
-                            leans});
+                            leans,
+                            !(cap_height * edge_lowest_reach < height)});
     for (int corner = 0; corner < 4; ++corner) {
       const Index triangle[3] = {corners[corner], corners[(corner + 1) % 4], apex};
       if (leans && corner == plane_edge)
