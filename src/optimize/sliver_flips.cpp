@@ -12,14 +12,14 @@ namespace mixmesh::optimize_detail {
 
 // Edge removal (Shewchuk's formulation): the best triangulation of the ring polygon,
 // by the dynamic programme over its sub-polygons, each triangle giving one
-// tetrahedron with either end of the edge.
+// tetrahedron with either end of the edge. Rings longer than maximum_ring try the
+// fans from each of their points only.
 void SliverRemoval::remove_an_edge(int t) {
   static constexpr std::array<std::array<int, 2>, 6> edges{{{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}}};
   const Tetrahedron nodes = complex_.nodes(t);
   for (const auto& edge : edges) {
     Index a = nodes[static_cast<std::size_t>(edge[0])], b = nodes[static_cast<std::size_t>(edge[1])];
-    if (!complex_.ring(t, a, b, apexes_, ring_) || static_cast<int>(apexes_.size()) > options_.maximum_ring)
-      continue;
+    if (!complex_.ring(t, a, b, apexes_, ring_)) continue;
     // Old tetrahedra (a, b, v_i, v_i+1) all have the mesh's orientation; with the ring
     // in that order the new ones are (a, v_i, v_k, v_j) and (b, v_i, v_j, v_k).
     const Tetrahedron first{a, b, apexes_[0], apexes_[1]};
@@ -29,6 +29,10 @@ void SliverRemoval::remove_an_edge(int t) {
       std::swap(a, b);
     Tally old;
     for (int cell : ring_) old.add(quality(complex_, cell), target());
+    if (static_cast<int>(apexes_.size()) > options_.maximum_ring) {
+      remove_an_edge_by_fans(t, a, b, old);
+      continue;
+    }
     const int m = static_cast<int>(apexes_.size());
     std::vector<double> best(static_cast<std::size_t>(m * m), std::numeric_limits<double>::infinity());
     std::vector<int> split(static_cast<std::size_t>(m * m), -1);
@@ -70,6 +74,31 @@ void SliverRemoval::remove_an_edge(int t) {
     change.removed = ring_;
     change.regions.assign(pieces.size(), complex_.region(t));
     change.added = std::move(pieces);
+    consider(std::move(change));
+  }
+}
+
+// The removal of edge (a, b) (oriented as in remove_an_edge) by the fan of its ring
+// polygon from one of its points r: each tetrahedron round the edge without r is cut
+// in two at r, those with r go. Where r lies on the edge (three hull points in a line:
+// a wing's last node at its trailing edge between two of the wake's, 2.6 mm apart,
+// random wing 39 of seed 95) the tetrahedra with r are flat, no hull point can move,
+// and the ring is often longer than the dynamic programme is given.
+void SliverRemoval::remove_an_edge_by_fans(int t, Index a, Index b, const Tally& old) {
+  const std::size_t m = apexes_.size();
+  for (std::size_t r = 0; r < m; ++r) {
+    Change change;
+    change.operation = Operation::edge_removal;
+    change.before = old;
+    change.removed = ring_;
+    for (std::size_t s = 1; s + 1 < m; ++s) {
+      const Index vi = apexes_[r], vk = apexes_[(r + s) % m], vj = apexes_[(r + s + 1) % m];
+      for (const Tetrahedron& piece : {Tetrahedron{a, vi, vk, vj}, Tetrahedron{b, vi, vj, vk}}) {
+        change.added.push_back(piece);
+        change.after.add(quality(complex_, piece), target());
+      }
+    }
+    change.regions.assign(change.added.size(), complex_.region(t));
     consider(std::move(change));
   }
 }

@@ -85,6 +85,7 @@ class SliverRemoval {
 
   // Flips, splits and collapses (sliver_flips.cpp).
   void remove_an_edge(int t);
+  void remove_an_edge_by_fans(int t, Index a, Index b, const Tally& old);
   void flip_a_face(int t);
   void split_an_edge(int t);
   void collapse_a_point(int t);

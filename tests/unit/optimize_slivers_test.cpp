@@ -155,6 +155,43 @@ TEST(SliverRemoval, PerturbedBlockLosesItsSliversAndKeepsItsBoundaryAndVolume) {
   }
 }
 
+TEST(SliverRemoval, APointOnAnEdgeIsMendedByTheFanFromIt) {
+  // Nine tetrahedra round the edge a-c, every point on the boundary: the ring's point
+  // r lies a hair off the edge's middle (three hull points in a line, as a wing's last
+  // node between two of the wake's), so the two tetrahedra with r are flat. The ring
+  // is longer than maximum_ring; the fan of the ring polygon from r cuts the other
+  // seven in two at r and mends both, with no new point.
+  MixedMesh mesh;
+  mesh.points = {{-1, 0, 0}, {1, 0, 0}, {0, 0, 1e-3}};  // a, c, r
+  for (int k = 1; k <= 8; ++k) {
+    const double angle = 40.0 * k * M_PI / 180.0;
+    mesh.points.emplace_back(0.0, std::sin(angle), std::cos(angle));
+  }
+  for (Index k = 0; k < 9; ++k) {
+    Index t[4] = {0, 1, static_cast<Index>(2 + k), static_cast<Index>(2 + (k + 1) % 9)};
+    if (tetrahedron_volume6(mesh.points[static_cast<std::size_t>(t[0])], mesh.points[static_cast<std::size_t>(t[1])],
+                            mesh.points[static_cast<std::size_t>(t[2])],
+                            mesh.points[static_cast<std::size_t>(t[3])]) < 0.0)
+      std::swap(t[0], t[1]);
+    mesh.add_cell(CellType::tetrahedron, t);
+  }
+  tag_boundary_walls(mesh);
+  std::size_t above = 0;
+  ASSERT_GT(largest_dihedral(mesh, above), 179.0);
+  const double volume = std::abs(total_volume(mesh));
+  SliverOptions options;
+  options.smooth_points = false;
+  options.search_points = false;
+  options.insert_points = false;
+  const SliverReport report = remove_slivers(mesh, options);
+  EXPECT_LT(largest_dihedral(mesh, above), 150.0);
+  EXPECT_EQ(report.edge_removals, 1u);
+  EXPECT_EQ(mesh.points.size(), 11u);
+  EXPECT_EQ(mesh.cell_count(CellType::tetrahedron), 14u);
+  EXPECT_NEAR(std::abs(total_volume(mesh)), volume, 1e-12);
+  EXPECT_TRUE(match_faces(mesh).conforming());
+}
+
 TEST(SliverRemoval, AFreePointJustAboveAFaceIsCollapsedAndDropped) {
   // One tetrahedron coned from an inner point a hair above its base: the cone on the
   // base is flat, and no flip of the four mends it (the point lies inside), but merging

@@ -11,6 +11,8 @@
 // splits of a sliver the one leaving the best worst tetrahedron is taken:
 //   - edge removal: the tetrahedra round an interior edge (3 to `maximum_ring`) are
 //     replaced by the best triangulation of their ring (3 -> 2, 4 -> 4, ... flips);
+//     longer rings by the best fan from one of the ring's points (where that point
+//     lies on the edge, three boundary points in a line, only a fan mends it);
 //   - face flip: two tetrahedra sharing a face become three round the segment between
 //     their apexes (2 -> 3);
 //   - edge split: a new point where an interior edge of the sliver passes the opposite
@@ -54,7 +56,7 @@ struct SliverOptions {
   // Tetrahedra whose largest dihedral angle is above this are worked on.
   double target_dihedral_degrees = 160.0;
   int passes = 12;
-  int maximum_ring = 7;  // the largest edge ring removed (tetrahedra round the edge)
+  int maximum_ring = 7;  // the largest edge ring triangulated at will (tetrahedra round the edge)
   bool smooth_points = true;
   // Where nothing else mends a tetrahedron above the target, its points are searched
   // for a better position (lines towards the sliver's other points, then axis steps):
