@@ -80,10 +80,10 @@ void SliverRemoval::remove_an_edge(int t) {
 
 // The removal of edge (a, b) (oriented as in remove_an_edge) by the fan of its ring
 // polygon from one of its points r: each tetrahedron round the edge without r is cut
-// in two at r, those with r go. Where r lies on the edge (three hull points in a line:
-// a wing's last node at its trailing edge between two of the wake's, 2.6 mm apart,
-// random wing 39 of seed 95) the tetrahedra with r are flat, no hull point can move,
-// and the ring is often longer than the dynamic programme is given.
+// in two at r, those with r go. Where r lies on the edge (three hull points in a line
+// at a trailing edge, 2.6 mm apart, random wing 39 of seed 95) the tetrahedra with r
+// are flat, no hull point can move, and the ring is often longer than the dynamic
+// programme is given.
 void SliverRemoval::remove_an_edge_by_fans(int t, Index a, Index b, const Tally& old) {
   const std::size_t m = apexes_.size();
   for (std::size_t r = 0; r < m; ++r) {
