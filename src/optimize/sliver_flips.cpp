@@ -91,13 +91,17 @@ void SliverRemoval::remove_an_edge_by_fans(int t, Index a, Index b, const Tally&
     change.operation = Operation::edge_removal;
     change.before = old;
     change.removed = ring_;
-    for (std::size_t s = 1; s + 1 < m; ++s) {
+    bool valid = true;  // a fan with an inverted piece is not weighed further
+    for (std::size_t s = 1; valid && s + 1 < m; ++s) {
       const Index vi = apexes_[r], vk = apexes_[(r + s) % m], vj = apexes_[(r + s + 1) % m];
       for (const Tetrahedron& piece : {Tetrahedron{a, vi, vk, vj}, Tetrahedron{b, vi, vj, vk}}) {
+        const double q = quality(complex_, piece);
+        valid = valid && q != invalid_quality;
         change.added.push_back(piece);
-        change.after.add(quality(complex_, piece), target());
+        change.after.add(q, target());
       }
     }
+    if (!valid) continue;
     change.regions.assign(change.added.size(), complex_.region(t));
     consider(std::move(change));
   }

@@ -743,18 +743,14 @@ TEST(InterfaceSplit, StandardCapsOnShearedQuadsStandOnTheirOwnNormals) {
   ASSERT_EQ(heights.size(), 6u);
   EXPECT_EQ(invalid_cells(result.mesh), 0);
   int caps = 0;
-  for (std::size_t cell = 0; cell < result.mesh.cell_count(CellType::pyramid); ++cell) {
-    const Index* nodes = result.mesh.cell(CellType::pyramid, cell);
-    Vector3 middle = Vector3::Zero();
-    for (int corner = 0; corner < 4; ++corner)
-      middle += 0.25 * result.mesh.points[static_cast<std::size_t>(nodes[corner])];
-    const Vector3 rise = result.mesh.points[static_cast<std::size_t>(nodes[4])] - middle;
-    if (rise.z() < 1.0) continue;  // not a cap on the tops (split cells' apexes are inside)
+  for_each_new_apex(result, 0, [&](const Vector3& middle, const Vector3& apex) {
+    const Vector3 rise = apex - middle;
+    if (rise.z() < 1.0) return;  // not a cap on the tops (split cells' apexes are inside)
     // The tops fall towards x = 4 and rise after it, 0.05 per unit.
     const Vector3 normal = Vector3(middle.x() < 4.0 ? 0.05 : -0.05, 0.0, 1.0).normalized();
     EXPECT_NEAR(rise.normalized().dot(normal), 1.0, 1e-12) << "cap over (" << middle.x() << ", " << middle.y() << ")";
     ++caps;
-  }
+  });
   EXPECT_EQ(caps, 6);
 }
 

@@ -158,9 +158,9 @@ TEST(SliverRemoval, PerturbedBlockLosesItsSliversAndKeepsItsBoundaryAndVolume) {
 TEST(SliverRemoval, APointOnAnEdgeIsMendedByTheFanFromIt) {
   // Nine tetrahedra round the edge a-c, every point on the boundary: the ring's point
   // r lies a hair off the edge's middle (three hull points in a line, as at a trailing
-  // edge), so the two tetrahedra with r are flat. The ring
-  // is longer than maximum_ring; the fan of the ring polygon from r cuts the other
-  // seven in two at r and mends both, with no new point.
+  // edge), so the two tetrahedra with r are flat. The ring is longer than maximum_ring;
+  // the fan of the ring polygon from r cuts the other seven in two at r and mends both,
+  // with no new point.
   MixedMesh mesh;
   mesh.points = {{-1, 0, 0}, {1, 0, 0}, {0, 0, 1e-3}};  // a, c, r
   for (int k = 1; k <= 8; ++k) {
